@@ -1,0 +1,82 @@
+// The schema registry: every block keyword and source kind Sylva understands, with
+// its attributes (type or typed port, unit dimension, default, range, required flag,
+// documentation). Filled by sylva_core (schema/BuiltinSchema.cpp); the DSL checks
+// projects against it, `sylva doc` prints it, docs/dsl.md is generated from it.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sylva/core/scene/Value.h"
+
+namespace sylva {
+
+// What flows along an edge of the source graph.
+enum class PortType {
+    None,
+    Elevation,  // metres above the WGS84 ellipsoid, one channel
+    Image,      // colour, linear RGB(A)
+    Normals,    // unit surface normals in ECEF, three channels
+    Mask,       // one channel in [0, 1]
+    Features,   // vector features (points, lines, polygons)
+    Instances,  // plant instances
+};
+
+const char* portTypeName(PortType type);  // "elevation", "image", ...
+
+enum class ValueType {
+    Number,     // a Quantity; `dimension` says which
+    Bool,
+    String,
+    Color,
+    Geo,        // geo(lat, lon[, height])
+    Word,       // one of `words`
+    Reference,  // @name of a block; `port` (sources) or `target` (other blocks) says which
+    List,       // of `element`
+    Object,     // { key = value } with free keys (checked by the consumer)
+};
+
+struct AttributeSchema {
+    std::string name;
+    ValueType type = ValueType::Number;
+    Dimension dimension = Dimension::None;  // for Number (and List of Number)
+    PortType port = PortType::None;         // for Reference to a source
+    std::string target;                     // for Reference to a non-source block: "camera", "scenario"
+    ValueType element = ValueType::Number;  // for List
+    std::vector<std::string> words;         // for Word
+    std::optional<double> minimum;          // inclusive, in SI units
+    std::optional<double> maximum;          // inclusive, in SI units
+    std::optional<Value> defaultValue;      // absent: no default
+    bool required = false;
+    std::string doc;
+};
+
+struct KindSchema {
+    std::string keyword;  // "source", "camera", "render" ...
+    std::string kind;     // source kind ("noise"); empty for other blocks
+    PortType output = PortType::None;  // for sources
+    std::string doc;
+    std::vector<AttributeSchema> attributes;
+
+    const AttributeSchema* find(std::string_view name) const;
+};
+
+class SchemaRegistry {
+public:
+    // The registry of everything built into this Sylva.
+    static const SchemaRegistry& builtin();
+
+    void add(KindSchema kind);
+    // Lookup by block keyword and, for sources, kind; nullptr if unknown.
+    const KindSchema* find(std::string_view keyword, std::string_view kind = {}) const;
+    // Source kinds in registration order, for did-you-mean and `sylva doc`.
+    std::vector<std::string> sourceKinds() const;
+    const std::vector<KindSchema>& all() const { return kinds_; }
+
+private:
+    std::vector<KindSchema> kinds_;
+};
+
+}  // namespace sylva
