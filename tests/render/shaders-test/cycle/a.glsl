@@ -1,0 +1,2 @@
+// a includes b, b includes a.
+#include "b.glsl"

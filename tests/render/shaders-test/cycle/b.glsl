@@ -1,0 +1,2 @@
+// b includes a again.
+#include "a.glsl"

@@ -1,0 +1,3 @@
+#version 450 core
+#include "a.glsl"
+void main() {}
