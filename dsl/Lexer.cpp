@@ -1,0 +1,426 @@
+#include "sylva/dsl/Lexer.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <numbers>
+#include <utility>
+
+namespace sylva::dsl {
+
+namespace {
+
+bool isIdentStart(char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+}
+bool isDigit(char c) {
+    return c >= '0' && c <= '9';
+}
+bool isIdentChar(char c) {
+    return isIdentStart(c) || isDigit(c);
+}
+bool isHex(char c) {
+    return isDigit(c) || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
+}
+int hexValue(char c) {
+    if (isDigit(c)) {
+        return c - '0';
+    }
+    return (c | 0x20) - 'a' + 10;
+}
+
+struct Unit {
+    const char* name;
+    double scale;  // to SI
+    Dimension dimension;
+};
+
+constexpr Unit kUnits[] = {
+    {"m", 1.0, Dimension::Length},
+    {"km", 1000.0, Dimension::Length},
+    {"cm", 0.01, Dimension::Length},
+    {"mm", 0.001, Dimension::Length},
+    {"deg", std::numbers::pi / 180.0, Dimension::Angle},
+    {"rad", 1.0, Dimension::Angle},
+    {"%", 0.01, Dimension::Ratio},
+    {"px", 1.0, Dimension::Pixels},
+    {"s", 1.0, Dimension::Time},
+    {"min", 60.0, Dimension::Time},
+    {"h", 3600.0, Dimension::Time},
+};
+
+std::size_t utf8Length(unsigned char lead) {
+    if (lead < 0x80) {
+        return 1;
+    }
+    if ((lead & 0xE0) == 0xC0) {
+        return 2;
+    }
+    if ((lead & 0xF0) == 0xE0) {
+        return 3;
+    }
+    return 4;
+}
+
+}  // namespace
+
+Lexer::Lexer(std::string_view text, std::shared_ptr<const std::string> file,
+             std::vector<Diagnostic>& diagnostics, std::size_t startOffset)
+    : text_(text), file_(std::move(file)), diagnostics_(diagnostics), pos_(startOffset) {}
+
+SourceLocation Lexer::locationAt(std::size_t offset, std::size_t length) const {
+    SourceLocation location;
+    location.file = file_;
+    location.line = line_;
+    location.column = static_cast<std::uint32_t>(offset - lineStart_ + 1);
+    location.length = static_cast<std::uint32_t>(length);
+    return location;
+}
+
+void Lexer::push(TokenKind kind, std::size_t start, std::size_t length) {
+    Token token;
+    token.kind = kind;
+    token.text = std::string(text_.substr(start, length));
+    token.location = locationAt(start, length);
+    tokens_.push_back(std::move(token));
+}
+
+bool Lexer::colourContext() const {
+    if (tokens_.empty()) {
+        return false;
+    }
+    switch (tokens_.back().kind) {
+        case TokenKind::Equals:
+        case TokenKind::Comma:
+        case TokenKind::LBracket:
+        case TokenKind::LParen:
+        case TokenKind::Colon:
+        case TokenKind::Plus:
+        case TokenKind::Minus:
+        case TokenKind::Star:
+        case TokenKind::Slash:
+            return true;
+        default:
+            return false;
+    }
+}
+
+std::vector<Token> Lexer::tokenize() {
+    // A byte order mark is not part of the text.
+    if (pos_ == 0 && text_.substr(0, 3) == "\xEF\xBB\xBF") {
+        pos_ = 3;
+    }
+    while (pos_ < text_.size()) {
+        char c = text_[pos_];
+        char next = pos_ + 1 < text_.size() ? text_[pos_ + 1] : '\0';
+        if (c == '\n') {
+            push(TokenKind::Newline, pos_, 1);
+            ++pos_;
+            ++line_;
+            lineStart_ = pos_;
+        } else if (c == ' ' || c == '\t' || c == '\r') {
+            ++pos_;
+        } else if (c == '#') {
+            if (colourContext() && isHex(next)) {
+                lexColour();
+            } else {
+                while (pos_ < text_.size() && text_[pos_] != '\n') {
+                    ++pos_;
+                }
+            }
+        } else if (c == '/' && next == '/') {
+            while (pos_ < text_.size() && text_[pos_] != '\n') {
+                ++pos_;
+            }
+        } else if (c == '/' && next == '*') {
+            skipBlockComment();
+        } else if (c == '/' && next == '-') {
+            push(TokenKind::SlashDash, pos_, 2);
+            pos_ += 2;
+        } else if (isDigit(c)) {
+            lexNumber();
+        } else if (isIdentStart(c)) {
+            std::size_t start = pos_;
+            while (pos_ < text_.size() && isIdentChar(text_[pos_])) {
+                ++pos_;
+            }
+            push(TokenKind::Identifier, start, pos_ - start);
+        } else if (c == '@') {
+            std::size_t start = pos_++;
+            if (pos_ >= text_.size() || !isIdentStart(text_[pos_])) {
+                addError(diagnostics_, "E0004", "expected a name after '@'", locationAt(start, 1),
+                         "a reference needs a name: '@height'");
+                continue;
+            }
+            std::size_t nameStart = pos_;
+            while (pos_ < text_.size() && isIdentChar(text_[pos_])) {
+                ++pos_;
+            }
+            std::string name(text_.substr(nameStart, pos_ - nameStart));
+            std::string field;
+            if (pos_ + 1 < text_.size() && text_[pos_] == '.' && isIdentStart(text_[pos_ + 1])) {
+                std::size_t fieldStart = ++pos_;
+                while (pos_ < text_.size() && isIdentChar(text_[pos_])) {
+                    ++pos_;
+                }
+                field = std::string(text_.substr(fieldStart, pos_ - fieldStart));
+            }
+            push(TokenKind::Reference, start, pos_ - start);
+            tokens_.back().text = std::move(name);
+            tokens_.back().field = std::move(field);
+        } else if (c == '"') {
+            lexString();
+        } else {
+            TokenKind kind = TokenKind::EndOfFile;
+            switch (c) {
+                case '{':
+                    kind = TokenKind::LBrace;
+                    break;
+                case '}':
+                    kind = TokenKind::RBrace;
+                    break;
+                case '[':
+                    kind = TokenKind::LBracket;
+                    break;
+                case ']':
+                    kind = TokenKind::RBracket;
+                    break;
+                case '(':
+                    kind = TokenKind::LParen;
+                    break;
+                case ')':
+                    kind = TokenKind::RParen;
+                    break;
+                case ',':
+                    kind = TokenKind::Comma;
+                    break;
+                case '=':
+                    kind = TokenKind::Equals;
+                    break;
+                case ':':
+                    kind = TokenKind::Colon;
+                    break;
+                case ';':
+                    kind = TokenKind::Semicolon;
+                    break;
+                case '+':
+                    kind = TokenKind::Plus;
+                    break;
+                case '-':
+                    kind = TokenKind::Minus;
+                    break;
+                case '*':
+                    kind = TokenKind::Star;
+                    break;
+                case '/':
+                    kind = TokenKind::Slash;
+                    break;
+                default:
+                    break;
+            }
+            if (kind == TokenKind::EndOfFile) {
+                lexUnexpected();
+            } else {
+                push(kind, pos_, 1);
+                ++pos_;
+            }
+        }
+    }
+    Token end;
+    end.kind = TokenKind::EndOfFile;
+    end.location = locationAt(pos_, 0);
+    tokens_.push_back(std::move(end));
+    return std::move(tokens_);
+}
+
+void Lexer::lexUnexpected() {
+    // A run of unexpected characters is one error, so binary-looking text stays readable.
+    std::size_t start = pos_;
+    auto recognised = [](char ch) {
+        return ch == '\n' || ch == ' ' || ch == '\t' || ch == '\r' || isIdentChar(ch) ||
+               std::string_view("{}[](),=:;+-*/#@\"").find(ch) != std::string_view::npos;
+    };
+    while (pos_ < text_.size() && !recognised(text_[pos_])) {
+        pos_ += std::min(utf8Length(static_cast<unsigned char>(text_[pos_])), text_.size() - pos_);
+    }
+    std::string run(text_.substr(start, pos_ - start));
+    unsigned char first = static_cast<unsigned char>(run[0]);
+    std::string shown;
+    if (first < 0x20 || first == 0x7F) {
+        char buffer[8];
+        std::snprintf(buffer, sizeof buffer, "\\x%02X", first);
+        shown = buffer;
+    } else {
+        shown = run.substr(0, utf8Length(first));
+    }
+    std::string message = run.size() > utf8Length(first) ? "unexpected characters starting with '"
+                                                         : "unexpected character '";
+    addError(diagnostics_, "E0004", message + shown + "'", locationAt(start, pos_ - start),
+             "not part of the language here");
+}
+
+void Lexer::lexNumber() {
+    std::size_t start = pos_;
+    while (pos_ < text_.size() && isDigit(text_[pos_])) {
+        ++pos_;
+    }
+    if (pos_ + 1 < text_.size() && text_[pos_] == '.' && isDigit(text_[pos_ + 1])) {
+        ++pos_;
+        while (pos_ < text_.size() && isDigit(text_[pos_])) {
+            ++pos_;
+        }
+    }
+    if (pos_ < text_.size() && (text_[pos_] == 'e' || text_[pos_] == 'E')) {
+        std::size_t look = pos_ + 1;
+        if (look < text_.size() && (text_[look] == '+' || text_[look] == '-')) {
+            ++look;
+        }
+        if (look < text_.size() && isDigit(text_[look])) {
+            pos_ = look;
+            while (pos_ < text_.size() && isDigit(text_[pos_])) {
+                ++pos_;
+            }
+        }
+    }
+    std::string digits(text_.substr(start, pos_ - start));
+    std::size_t unitStart = pos_;
+    if (pos_ < text_.size() && text_[pos_] == '%') {
+        ++pos_;
+    } else {
+        while (pos_ < text_.size() && isIdentChar(text_[pos_])) {
+            ++pos_;
+        }
+    }
+    std::string unit(text_.substr(unitStart, pos_ - unitStart));
+    push(TokenKind::Number, start, pos_ - start);
+    Token& token = tokens_.back();
+    double value = std::strtod(digits.c_str(), nullptr);
+    if (!std::isfinite(value)) {
+        addError(diagnostics_, "E0009", "number '" + digits + "' is too large",
+                 locationAt(start, pos_ - start), "does not fit in a double");
+        value = 0.0;
+        token.malformed = true;
+    }
+    token.number = value;
+    if (unit.empty()) {
+        return;
+    }
+    for (const Unit& known : kUnits) {
+        if (unit == known.name) {
+            token.number = value * known.scale;
+            token.dimension = known.dimension;
+            return;
+        }
+    }
+    token.malformed = true;
+    addError(diagnostics_, "E0008", "unknown unit '" + unit + "'",
+             locationAt(unitStart, pos_ - unitStart), "not a unit")
+        .help.push_back("units are: m, km, cm, mm, deg, rad, %, px, s, min, h");
+}
+
+void Lexer::lexColour() {
+    std::size_t start = pos_++;
+    std::size_t digitsStart = pos_;
+    while (pos_ < text_.size() && isIdentChar(text_[pos_])) {
+        ++pos_;
+    }
+    std::string_view digits = text_.substr(digitsStart, pos_ - digitsStart);
+    push(TokenKind::Color, start, pos_ - start);
+    bool allHex = true;
+    for (char ch : digits) {
+        allHex = allHex && isHex(ch);
+    }
+    if (!allHex || (digits.size() != 6 && digits.size() != 8)) {
+        tokens_.back().malformed = true;
+        addError(diagnostics_, "E0009", "invalid colour '#" + std::string(digits) + "'",
+                 locationAt(start, pos_ - start), "expected #RRGGBB or #RRGGBBAA");
+        return;
+    }
+    float components[4] = {0, 0, 0, 1};
+    for (std::size_t i = 0; i < digits.size() / 2; ++i) {
+        int byte = hexValue(digits[2 * i]) * 16 + hexValue(digits[2 * i + 1]);
+        components[i] = static_cast<float>(byte) / 255.0f;
+    }
+    tokens_.back().color = Color{components[0], components[1], components[2], components[3]};
+}
+
+void Lexer::lexString() {
+    std::size_t start = pos_++;
+    std::string value;
+    while (true) {
+        if (pos_ >= text_.size() || text_[pos_] == '\n') {
+            addError(diagnostics_, "E0005", "unterminated string", locationAt(start, 1),
+                     "this string is not closed on its line");
+            break;
+        }
+        char c = text_[pos_];
+        if (c == '"') {
+            ++pos_;
+            break;
+        }
+        if (c == '\\' && pos_ + 1 < text_.size()) {
+            char escaped = text_[pos_ + 1];
+            switch (escaped) {
+                case '"':
+                    value += '"';
+                    break;
+                case '\\':
+                    value += '\\';
+                    break;
+                case 'n':
+                    value += '\n';
+                    break;
+                case 't':
+                    value += '\t';
+                    break;
+                default:
+                    if (escaped == '\n') {
+                        addError(diagnostics_, "E0005", "unterminated string", locationAt(start, 1),
+                                 "this string is not closed on its line");
+                        ++pos_;
+                        goto done;
+                    }
+                    addError(diagnostics_, "E0007",
+                             "unknown escape sequence '\\" + std::string(1, escaped) + "'",
+                             locationAt(pos_, 2), "valid escapes are \\\" \\\\ \\n \\t");
+                    break;
+            }
+            pos_ += 2;
+            continue;
+        }
+        value += c;
+        ++pos_;
+    }
+done:
+    push(TokenKind::String, start, pos_ - start);
+    tokens_.back().text = std::move(value);
+}
+
+void Lexer::skipBlockComment() {
+    SourceLocation opening = locationAt(pos_, 2);
+    pos_ += 2;
+    int depth = 1;
+    while (pos_ < text_.size() && depth > 0) {
+        char c = text_[pos_];
+        char next = pos_ + 1 < text_.size() ? text_[pos_ + 1] : '\0';
+        if (c == '/' && next == '*') {
+            ++depth;
+            pos_ += 2;
+        } else if (c == '*' && next == '/') {
+            --depth;
+            pos_ += 2;
+        } else {
+            if (c == '\n') {
+                ++line_;
+                lineStart_ = pos_ + 1;
+            }
+            ++pos_;
+        }
+    }
+    if (depth > 0) {
+        addError(diagnostics_, "E0006", "unterminated block comment", opening,
+                 "this comment is never closed");
+    }
+}
+
+}  // namespace sylva::dsl

@@ -1,0 +1,86 @@
+// The syntax tree of a project file, every node with its source range. Produced by the
+// Parser, consumed by the Resolver; no semantic checks happen here.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "sylva/core/base/SourceLocation.h"
+#include "sylva/core/scene/Value.h"
+
+namespace sylva::dsl {
+
+struct Expr;
+using ExprPtr = std::unique_ptr<Expr>;
+
+struct Expr {
+    enum class Kind {
+        Number,
+        String,
+        Color,
+        Bool,
+        Reference,
+        Word,
+        List,
+        Object,
+        Call,
+        Unary,
+        Binary
+    };
+    Kind kind = Kind::Number;
+    SourceLocation location;  // the whole expression (one line at most for carets)
+
+    double number = 0.0;  // Number: SI value
+    Dimension dimension = Dimension::None;
+    std::string text;   // String value, Word, Reference name, Call function name
+    std::string field;  // Reference: part after '.', empty if none
+    Color color;
+    bool boolean = false;
+    char op = 0;  // Unary: '-' or '+'; Binary: '+', '-', '*', '/'
+
+    // List elements, Call arguments, Unary operand, Binary operands, Object values.
+    std::vector<ExprPtr> children;
+    // Object keys with their locations, parallel to children.
+    std::vector<std::pair<std::string, SourceLocation>> keys;
+};
+
+struct AttributeNode {
+    std::string name;
+    SourceLocation nameLocation;
+    ExprPtr value;
+};
+
+// `keyword [name] [: kind] { attributes }`
+struct BlockNode {
+    std::string keyword;
+    SourceLocation keywordLocation;
+    std::string name;  // empty when anonymous
+    SourceLocation nameLocation;
+    std::string kind;  // empty when not written
+    SourceLocation kindLocation;
+    std::vector<AttributeNode> attributes;
+};
+
+// `param name [: type] [= default] ["doc"]`
+struct ParamNode {
+    std::string name;
+    SourceLocation nameLocation;
+    std::string type;  // empty when not written
+    SourceLocation typeLocation;
+    ExprPtr defaultValue;  // null when not written
+    std::string doc;
+};
+
+using Statement = std::variant<BlockNode, ParamNode>;
+
+struct FileNode {
+    std::vector<Statement> statements;  // in source order
+};
+
+// A location covering `first` through `last` when both are on one line, else `first`.
+SourceLocation spanLocations(const SourceLocation& first, const SourceLocation& last);
+
+}  // namespace sylva::dsl

@@ -1,0 +1,57 @@
+// Tokens produced by the Lexer. Numbers are already normalised to SI with their
+// dimension; strings are already unescaped.
+#pragma once
+
+#include <string>
+
+#include "sylva/core/base/SourceLocation.h"
+#include "sylva/core/scene/Value.h"
+
+namespace sylva::dsl {
+
+enum class TokenKind {
+    Identifier,
+    Number,
+    String,
+    Color,
+    Reference,  // @name or @name.field
+    LBrace,
+    RBrace,
+    LBracket,
+    RBracket,
+    LParen,
+    RParen,
+    Comma,
+    Equals,
+    Colon,
+    Semicolon,
+    Plus,
+    Minus,
+    Star,
+    Slash,
+    SlashDash,  // `/-`: comments out the next attribute or block
+    Newline,
+    EndOfFile,
+};
+
+struct Token {
+    TokenKind kind = TokenKind::EndOfFile;
+    std::string text;   // identifier / reference name / unescaped string / source text
+    std::string field;  // for Reference: the part after '.', empty if none
+    SourceLocation location;
+    double number = 0.0;  // for Number: value in SI units
+    Dimension dimension = Dimension::None;
+    Color color;
+    bool malformed = false;  // a lexical error was reported for this token
+
+    bool is(TokenKind k) const { return kind == k; }
+    bool closesLine() const {
+        return kind == TokenKind::Newline || kind == TokenKind::Semicolon ||
+               kind == TokenKind::EndOfFile;
+    }
+};
+
+// How a token is named in syntax errors: "'}'", "identifier 'foo'", "end of line".
+std::string describeToken(const Token& token);
+
+}  // namespace sylva::dsl
