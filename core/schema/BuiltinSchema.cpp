@@ -100,10 +100,11 @@ SchemaRegistry makeBuiltin() {
 
     registry.add(
         {"source", "noise", PortType::Elevation,
-         "Fractal relief on the sphere: fBm of 3D gradient noise evaluated on the unit sphere, "
-         "so it is seamless at the antimeridian and the poles. Octaves finer than two texels "
-         "of the requested tile are left out (band-limited), so every pyramid level is a "
-         "filtered version of the same surface.",
+         "Fractal relief on the sphere: continents from fBm of 3D gradient noise and mountains "
+         "from a ridged multifractal masked to land, both evaluated on the unit sphere, so "
+         "the surface is seamless at the antimeridian and the poles. Octaves finer than two "
+         "texels of the requested tile are left out (band-limited), so every pyramid level "
+         "is a filtered version of the same surface.",
          {number("seed", Dimension::None, 1, 0, 2147483647, "Random seed."),
           number("amplitude", Dimension::Length, 2500, 0, 1e5,
                  "Height of the largest octave, in metres."),
@@ -115,7 +116,11 @@ SchemaRegistry makeBuiltin() {
           number("gain", Dimension::None, 0.5, 0.0, 1.0,
                  "Amplitude ratio between successive octaves."),
           number("ridges", Dimension::Ratio, 0.5, 0.0, 1.0,
-                 "Mix between smooth fBm (0%) and ridged multifractal (100%)."),
+                 "Share of the ridged-multifractal mountains in the relief (0%: continents only)."),
+          number("ridge_wavelength", Dimension::Length, 2.0e5, 1, 4.0e7,
+                 "Wavelength of the largest mountain octave, in metres."),
+          number("roughness", Dimension::None, 0.6, 0.0, 1.0,
+                 "Amplitude ratio between successive mountain octaves."),
           number("offset", Dimension::Length, 0, -1e5, 1e5, "Added to every height, in metres.")}});
 
     registry.add(

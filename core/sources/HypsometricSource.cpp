@@ -111,7 +111,20 @@ Result<TilePointer> HypsometricSource::produce(const TileKey& key, TileProvider&
                 normal = NormalMapSource::normalAt(h, ix, iy, 1.0);
             }
             const double slope = std::acos(std::clamp(glm::dot(glm::normalize(normal), up), -1.0, 1.0));
-            const glm::vec3 c = colorAt(h.at(ix, iy, 0), slope);
+            const double elevation = h.at(ix, iy, 0);
+            glm::vec3 c = colorAt(elevation, slope);
+            // Anti-alias the coastline: where the zero contour passes within half a
+            // texel, mix land and water by the texel's signed distance to it (height
+            // over the local height change per texel), so filtered tiles show a smooth
+            // coast instead of texel steps.
+            const int x0 = std::max(ix - 1, -format.border), x1 = std::min(ix + 1, format.size + format.border - 1);
+            const int y0 = std::max(iy - 1, -format.border), y1 = std::min(iy + 1, format.size + format.border - 1);
+            const double change = std::hypot((h.at(x1, iy, 0) - h.at(x0, iy, 0)) / (x1 - x0),
+                                             (h.at(ix, y1, 0) - h.at(ix, y0, 0)) / (y1 - y0));
+            if (change > 0.0 && std::abs(elevation) < change) {
+                const float land = static_cast<float>(std::clamp(0.5 + elevation / change, 0.0, 1.0));
+                c = glm::mix(colorAt(-1e-3, slope), colorAt(1e-3, slope), land);
+            }
             tile->at(ix, iy, 0) = c.x;
             tile->at(ix, iy, 1) = c.y;
             tile->at(ix, iy, 2) = c.z;

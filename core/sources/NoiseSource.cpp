@@ -7,6 +7,11 @@
 #include "sylva/core/geo/Ellipsoid.h"
 
 namespace sylva {
+namespace {
+
+constexpr double kSelfSimilarBelow = 4000.0;  // metres
+
+}  // namespace
 
 NoiseSource::NoiseSource(std::string name, const NoiseParameters& parameters)
     : Source(std::move(name), "noise", PortType::Elevation, 1),
@@ -20,35 +25,61 @@ NoiseSource::NoiseSource(std::string name, const NoiseParameters& parameters)
         .add(parameters.lacunarity)
         .add(parameters.gain)
         .add(parameters.ridges)
+        .add(parameters.ridgeWavelength)
+        .add(parameters.roughness)
         .add(parameters.offset);
     setParameterHash(hash.value());
 }
 
 double NoiseSource::height(const glm::dvec3& unitDirection, double footprintMetres) const {
     const NoiseParameters& p = parameters_;
-    const glm::dvec3 base = unitDirection * (Ellipsoid::kMeanRadius / p.baseWavelength);
-    double sum = 0.0;
+    // Fade an octave out between 4 and 2 footprints per wavelength; 0 = skip.
+    const auto octaveWeight = [footprintMetres](double wavelength) {
+        return footprintMetres > 0.0 ? std::clamp(std::log2(wavelength / (2.0 * footprintMetres)), 0.0, 1.0) : 1.0;
+    };
+    const auto shift = [](int octave, double phase) {
+        // A fixed, irrational shift per octave decorrelates the lattices.
+        return glm::dvec3(0.3183 * octave + 0.11 + phase, 0.5772 * octave + 0.37, 0.7071 * octave + 0.73 - phase);
+    };
+
+    double continents = 0.0;
     double amplitude = 1.0;
-    double frequency = 1.0;
+    double wavelength = p.baseWavelength;
     for (int octave = 0; octave < p.octaves; ++octave) {
-        const double wavelength = p.baseWavelength / frequency;
-        double weight = 1.0;
-        if (footprintMetres > 0.0) {
-            // Fade the octave out between 4 and 2 footprints per wavelength.
-            weight = std::clamp(std::log2(wavelength / (2.0 * footprintMetres)), 0.0, 1.0);
+        const double weight = octaveWeight(wavelength);
+        if (weight <= 0.0) {
+            break;
+        }
+        continents += amplitude * weight * noise_(unitDirection * (Ellipsoid::kMeanRadius / wavelength) + shift(octave, 0.0));
+        amplitude *= p.gain;
+        wavelength /= p.lacunarity;
+    }
+
+    double mountains = 0.0;
+    if (p.ridges > 0.0) {
+        double previous = 1.0;
+        amplitude = 1.0;
+        wavelength = p.ridgeWavelength;
+        for (int octave = 0; octave < p.octaves; ++octave) {
+            const double weight = octaveWeight(wavelength);
             if (weight <= 0.0) {
                 break;
             }
+            const double n = noise_(unitDirection * (Ellipsoid::kMeanRadius / wavelength) + shift(octave, 17.0));
+            double signal = 1.0 - 2.0 * std::abs(n);  // crest where the noise crosses zero
+            signal *= signal * previous;
+            previous = std::clamp(0.4 + signal, 0.0, 1.0);
+            mountains += amplitude * weight * signal;
+            // Below a few kilometres real relief stops getting steeper with scale:
+            // switch to ratio 1/2 (constant slope) so walker-scale terrain stays walkable.
+            amplitude *= wavelength > kSelfSimilarBelow ? p.roughness : 0.5;
+            wavelength /= p.lacunarity;
         }
-        // A fixed, irrational shift per octave decorrelates the lattices.
-        const glm::dvec3 shift(0.3183 * octave + 0.11, 0.5772 * octave + 0.37, 0.7071 * octave + 0.73);
-        const double n = noise_(base * frequency + shift);
-        const double ridge = 1.0 - 2.0 * std::abs(n);  // crest where n crosses zero
-        sum += amplitude * weight * ((1.0 - p.ridges) * n + p.ridges * ridge * 0.5);
-        amplitude *= p.gain;
-        frequency *= p.lacunarity;
+        // Mountains rise on land only, growing with the distance from the coast.
+        const double land = std::clamp((continents + 0.02) / 0.25, 0.0, 1.0);
+        mountains *= land * land * (3.0 - 2.0 * land);
     }
-    return p.amplitude * sum + p.offset;
+    return p.amplitude * ((1.0 - p.ridges) * continents + p.ridges * mountains) + p.offset;
 }
 
 Result<TilePointer> NoiseSource::produce(const TileKey& key, TileProvider& provider) const {

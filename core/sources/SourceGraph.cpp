@@ -26,6 +26,8 @@ Result<std::unique_ptr<Source>> createNoise(const Block& block, const BlockReade
                                 {"lacunarity", &p.lacunarity},
                                 {"gain", &p.gain},
                                 {"ridges", &p.ridges},
+                                {"ridge_wavelength", &p.ridgeWavelength},
+                                {"roughness", &p.roughness},
                                 {"offset", &p.offset}}) {
         Result<double> v = reader.number(name);
         if (!v) {

@@ -32,9 +32,10 @@ Clipmap::Clipmap(int levelCount, int size, int channels)
 
 double Clipmap::ringRadius(int level) { return std::ldexp(std::numbers::pi, -level); }
 
-ClipmapWindow Clipmap::windowFor(int level, double latitude, double longitude, int size) {
+ClipmapWindow Clipmap::windowFor(int level, double latitude, double longitude, int size, int levelOffset) {
+    SYLVA_CHECK(levelOffset >= 1);
     ClipmapWindow window;
-    window.level = std::max(0, level - 2);
+    window.level = std::max(0, level - levelOffset);
     const double radius = ringRadius(level);
     const double colatitude = std::numbers::pi / 2 - latitude;
     const double texelHeight = std::numbers::pi / (double(TileKey::rows(window.level)) * size);

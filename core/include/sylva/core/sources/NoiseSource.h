@@ -22,6 +22,8 @@ struct NoiseParameters {
     double lacunarity = 2.0;
     double gain = 0.5;
     double ridges = 0.5;             // 0..1
+    double ridgeWavelength = 2.0e5;  // metres
+    double roughness = 0.6;          // amplitude ratio of ridged octaves
     double offset = 0.0;             // metres
 };
 

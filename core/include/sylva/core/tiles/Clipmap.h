@@ -8,9 +8,13 @@
 //
 // Level i of the clipmap belongs to ring level i of the spherical geometry clipmap
 // (seed 001 §5.3.4: ring i covers view angles (2^-(i+1) pi, 2^-i pi]); its window
-// uses pyramid level max(0, i - 2), so it spans twice the ring's radius in latitude,
-// and the coarsest longitude reduction that still covers the ring (§5.4.1: the
-// longitude range grows towards the poles, in power-of-two steps).
+// uses pyramid level max(0, i - levelOffset) and the coarsest longitude reduction
+// that still covers the ring (§5.4.1: the longitude range grows towards the poles,
+// in power-of-two steps). With levelOffset 2 (height) a window spans twice the
+// ring's radius; with levelOffset 1 (colour and normals at twice the resolution, as
+// seed 001 §4.8.2 gives colour more texels than height) it spans the radius itself,
+// which suffices: a ring gives its own level zero weight in its outer tenth
+// (TerrainRings blends fully to the coarser level there).
 #pragma once
 
 #include <cstdint>
@@ -52,7 +56,7 @@ public:
 
     // The window that clipmap level `level` needs for a focus at (latitude,
     // longitude) in radians. Deterministic; equal inputs give equal windows.
-    static ClipmapWindow windowFor(int level, double latitude, double longitude, int size);
+    static ClipmapWindow windowFor(int level, double latitude, double longitude, int size, int levelOffset = 2);
     // Ring radius of level i in radians of view angle: 2^-i pi.
     static double ringRadius(int level);
 

@@ -1,0 +1,62 @@
+#include "CommandLine.h"
+
+namespace sylva::app {
+
+ParsedCommandLine parseCommandLine(const std::vector<std::string>& arguments, const std::vector<OptionSpec>& specs) {
+    ParsedCommandLine result;
+    for (std::size_t i = 0; i < arguments.size(); ++i) {
+        const std::string& argument = arguments[i];
+        if (argument == "-D" || (argument.rfind("-D", 0) == 0 && argument.size() > 2 && argument[2] != '-')) {
+            std::string definition = argument.size() > 2 ? argument.substr(2) : "";
+            if (definition.empty()) {
+                if (i + 1 >= arguments.size()) {
+                    result.error = "-D needs name=value";
+                    return result;
+                }
+                definition = arguments[++i];
+            }
+            const std::size_t equals = definition.find('=');
+            if (equals == std::string::npos || equals == 0) {
+                result.error = "-D needs name=value, got '" + definition + "'";
+                return result;
+            }
+            result.defines.emplace_back(definition.substr(0, equals), definition.substr(equals + 1));
+            continue;
+        }
+        if (argument.rfind("--", 0) != 0 || argument == "--") {
+            result.positional.push_back(argument);
+            continue;
+        }
+        std::string name = argument.substr(2);
+        std::optional<std::string> value;
+        if (const std::size_t equals = name.find('='); equals != std::string::npos) {
+            value = name.substr(equals + 1);
+            name = name.substr(0, equals);
+        }
+        const OptionSpec* spec = nullptr;
+        for (const OptionSpec& candidate : specs) {
+            if (candidate.name == name) {
+                spec = &candidate;
+            }
+        }
+        if (spec == nullptr) {
+            result.error = "unknown option '--" + name + "'";
+            return result;
+        }
+        if (spec->takesValue && !value) {
+            if (i + 1 >= arguments.size()) {
+                result.error = "option '--" + name + "' needs a value";
+                return result;
+            }
+            value = arguments[++i];
+        }
+        if (!spec->takesValue && value) {
+            result.error = "option '--" + name + "' takes no value";
+            return result;
+        }
+        result.options[name] = value.value_or("");
+    }
+    return result;
+}
+
+}  // namespace sylva::app

@@ -1,0 +1,34 @@
+// CommandLine: a small, strict parser for `sylva COMMAND [options] [arguments]`.
+// Options are `--name value`, `--name=value` or flags; `-D name=value` is collected
+// separately. Unknown options are usage errors (exit code 2), never ignored.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace sylva::app {
+
+struct OptionSpec {
+    std::string name;   // without dashes: "out"
+    bool takesValue = true;
+};
+
+struct ParsedCommandLine {
+    std::vector<std::string> positional;
+    std::map<std::string, std::string> options;  // flags map to ""
+    std::vector<std::pair<std::string, std::string>> defines;
+    std::string error;  // non-empty: a usage error
+
+    bool has(const std::string& name) const { return options.count(name) != 0; }
+    std::optional<std::string> get(const std::string& name) const {
+        auto it = options.find(name);
+        return it == options.end() ? std::nullopt : std::optional<std::string>(it->second);
+    }
+};
+
+ParsedCommandLine parseCommandLine(const std::vector<std::string>& arguments, const std::vector<OptionSpec>& specs);
+
+}  // namespace sylva::app

@@ -1,0 +1,39 @@
+#include "ProjectSession.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+#include "sylva/dsl/ProjectLoader.h"
+
+namespace sylva::app {
+
+void reportError(const std::string& message) { std::fprintf(stderr, "sylva: %s\n", message.c_str()); }
+
+std::optional<ProjectSession> ProjectSession::open(const std::filesystem::path& file,
+                                                   const std::vector<std::pair<std::string, std::string>>& defines) {
+    dsl::LoadOptions options;
+    options.defines = defines;
+    dsl::LoadResult loaded = dsl::loadProject(file, options);
+    if (!loaded.diagnostics.empty()) {
+        const std::string text = loaded.render(isatty(fileno(stderr)) != 0);
+        std::fputs(text.c_str(), stderr);
+        if (!text.empty() && text.back() != '\n') {
+            std::fputc('\n', stderr);
+        }
+    }
+    if (loaded.hasErrors() || !loaded.model) {
+        return std::nullopt;
+    }
+    ProjectSession session;
+    session.model = std::move(*loaded.model);
+    Result<SourceGraph> graph = SourceGraph::build(session.model);
+    if (!graph) {
+        reportError(graph.error().message);
+        return std::nullopt;
+    }
+    session.graph.emplace(std::move(graph.value()));
+    return session;
+}
+
+}  // namespace sylva::app

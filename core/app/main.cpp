@@ -1,0 +1,53 @@
+// The sylva command-line program: dispatches to the sub-commands.
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "Commands.h"
+
+namespace {
+
+void printUsage(std::FILE* stream) {
+    std::fputs(
+        "usage: sylva COMMAND [options]\n"
+        "\n"
+        "commands:\n"
+        "  render PROJECT [--views NAME] [--out DIR] [--size WxH] [--gl egl|osmesa|glfw] [-D name=value]\n"
+        "                 render the project's views to images\n"
+        "  check PROJECT [-D name=value]\n"
+        "                 report every problem in a project without rendering\n"
+        "\n"
+        "environment:\n"
+        "  SYLVA_GL=egl|osmesa|glfw   OpenGL back end (default: EGL, falling back to OSMesa)\n"
+        "  SYLVA_SHADER_DIR=DIR       read shaders from DIR instead of the built-in copies\n",
+        stream);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        printUsage(stderr);
+        return 2;
+    }
+    const std::string command = argv[1];
+    const std::vector<std::string> arguments(argv + 2, argv + argc);
+    if (command == "render") {
+        return sylva::app::runRender(arguments);
+    }
+    if (command == "check") {
+        return sylva::app::runCheck(arguments);
+    }
+    if (command == "--help" || command == "-h" || command == "help") {
+        printUsage(stdout);
+        return 0;
+    }
+    if (command == "--version") {
+        std::puts("sylva 0.1.0");
+        return 0;
+    }
+    std::fprintf(stderr, "sylva: unknown command '%s'\n", command.c_str());
+    printUsage(stderr);
+    return 2;
+}

@@ -1,0 +1,124 @@
+#include "sylva/render/SceneRenderer.h"
+
+#include <glad/gl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "sylva/core/terrain/ElevationQuery.h"
+
+namespace sylva::render {
+
+Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const ShaderLibrary& library,
+                                                             const TerrainSettings& settings) {
+    std::unique_ptr<SceneRenderer> renderer(new SceneRenderer());
+    Result<std::unique_ptr<TerrainRenderer>> terrain = TerrainRenderer::create(library, settings);
+    if (!terrain) {
+        return terrain.error();
+    }
+    renderer->terrain_ = std::move(terrain.value());
+    Result<std::unique_ptr<ShadingPass>> shading = ShadingPass::create(library);
+    if (!shading) {
+        return shading.error();
+    }
+    renderer->shading_ = std::move(shading.value());
+    return renderer;
+}
+
+SceneRenderer::~SceneRenderer() = default;
+
+glm::dmat4 SceneRenderer::projection(double verticalFov, double aspect, double near) {
+    const double f = 1.0 / std::tan(verticalFov / 2);
+    glm::dmat4 p(0.0);
+    p[0][0] = f / aspect;
+    p[1][1] = f;
+    p[2][3] = -1.0;  // w = -z
+    p[3][2] = near;  // z = near, so depth = near / distance after the divide
+    return p;
+}
+
+Status SceneRenderer::ensureTargets(int width, int height) {
+    if (gbuffer_.id() != 0 && gbuffer_.width() == width && gbuffer_.height() == height) {
+        return Status::success();
+    }
+    Result<Framebuffer> gbuffer = Framebuffer::create(width, height, {GL_RGBA16F, GL_RGBA16F}, true);
+    if (!gbuffer) {
+        return gbuffer.error();
+    }
+    Result<Framebuffer> output = Framebuffer::create(width, height, {GL_RGBA8}, false);
+    if (!output) {
+        return output.error();
+    }
+    gbuffer_ = std::move(gbuffer.value());
+    output_ = std::move(output.value());
+    return Status::success();
+}
+
+Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
+                                    const RenderSettings& settings) {
+    if (settings.width < 1 || settings.height < 1 || settings.width > 16384 || settings.height > 16384) {
+        return Error{"image size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
+                     " is outside 1..16384"};
+    }
+    if (Status status = ensureTargets(settings.width, settings.height); !status) {
+        return status.error();
+    }
+    // Height above the terrain at the nadir, from the level that will be drawn there:
+    // estimate with a coarse level first, then refine at the finest visible level.
+    const ElevationQuery query(*layers.elevation, provider);
+    Result<double> ground = query.groundHeight(camera.geodetic.latitude, camera.geodetic.longitude, 12);
+    if (!ground) {
+        return ground.error();
+    }
+    LevelRange levels = terrain_->visibleLevels(camera, std::max(camera.geodetic.height - ground.value(), 0.01),
+                                                settings.height);
+    ground = query.groundHeight(camera.geodetic.latitude, camera.geodetic.longitude, levels.finest);
+    if (!ground) {
+        return ground.error();
+    }
+    double groundHeight = ground.value();
+    if (settings.ocean) {
+        groundHeight = std::max(groundHeight, 0.0);
+    }
+    const double aboveTerrain = camera.geodetic.height - groundHeight;
+    if (aboveTerrain <= 0.0) {
+        char buffer[160];
+        std::snprintf(buffer, sizeof buffer, "the camera is %.2f m below the terrain (ground at %.2f m)",
+                      -aboveTerrain, groundHeight);
+        return Error{buffer};
+    }
+    levels = terrain_->visibleLevels(camera, aboveTerrain, settings.height);
+    statistics_.heightAboveTerrain = aboveTerrain;
+
+    if (Status status = terrain_->update(layers, provider, camera, levels); !status) {
+        return status.error();
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const double near = std::clamp(0.3 * aboveTerrain, 0.02, 1.0e4);
+    const glm::dmat4 projection =
+        SceneRenderer::projection(camera.verticalFov, double(settings.width) / settings.height, near);
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    gbuffer_.bind();
+    gbuffer_.clearColor(0, glm::vec4(0.0f));
+    gbuffer_.clearColor(1, glm::vec4(0.0f));
+    gbuffer_.clearDepth(0.0f);  // reversed-Z: 0 is infinitely far
+    terrain_->draw(camera, projection, levels, settings.ocean);
+    ShadingSettings shading;
+    shading.sunDirection = settings.sunDirection;
+    shading.atmosphere = settings.atmosphere;
+    shading.exposure = settings.exposure;
+    shading_->run(gbuffer_, output_, camera, projection, near, shading);
+    Image image;
+    image.width = settings.width;
+    image.height = settings.height;
+    image.pixels = output_.readPixelsRGBA8(0);
+    Framebuffer::unbind();
+    glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+    statistics_.terrain = terrain_->statistics();
+    statistics_.gpuSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return image;
+}
+
+}  // namespace sylva::render

@@ -1,0 +1,73 @@
+// SceneRenderer: renders one view of one scenario into an image: clipmap update,
+// terrain into the G-buffer, shading, read-back. The CLI, the tests and later the
+// viewer and `sylva watch` all render through it.
+//
+// Needs a current GL 4.5 context for create() and render(); destroy it while that
+// context is current. Data errors (a tile that cannot be produced) come back as
+// Result errors naming the source and tile; nothing is written anywhere.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "sylva/core/base/Result.h"
+#include "sylva/core/scene/Camera.h"
+#include "sylva/core/sources/SourceGraph.h"
+#include "sylva/render/Framebuffer.h"
+#include "sylva/render/ShadingPass.h"
+#include "sylva/render/TerrainRenderer.h"
+
+namespace sylva::render {
+
+struct RenderSettings {
+    int width = 1280;
+    int height = 720;
+    glm::dvec3 sunDirection{1, 0, 0};  // ECEF unit vector towards the sun
+    bool atmosphere = true;
+    bool ocean = true;
+    double exposure = 1.0;
+};
+
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> pixels;  // RGBA8, sRGB, rows top to bottom
+};
+
+struct RenderStatistics {
+    TerrainFrameStatistics terrain;
+    double heightAboveTerrain = 0;  // metres
+    double gpuSeconds = 0;          // draw + shade + read-back
+};
+
+class SceneRenderer {
+public:
+    static Result<std::unique_ptr<SceneRenderer>> create(const ShaderLibrary& library,
+                                                         const TerrainSettings& settings);
+    ~SceneRenderer();
+
+    // Fails if the camera is below the terrain or a tile fails.
+    Result<Image> render(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
+                         const RenderSettings& settings);
+
+    // Reversed-Z perspective with an infinite far plane (depth = near / distance).
+    static glm::dmat4 projection(double verticalFov, double aspect, double near);
+
+    const RenderStatistics& statistics() const { return statistics_; }
+    TerrainRenderer& terrain() { return *terrain_; }
+
+private:
+    SceneRenderer() = default;
+    Status ensureTargets(int width, int height);
+
+    std::unique_ptr<TerrainRenderer> terrain_;
+    std::unique_ptr<ShadingPass> shading_;
+    Framebuffer gbuffer_;
+    Framebuffer output_;
+    RenderStatistics statistics_;
+};
+
+}  // namespace sylva::render

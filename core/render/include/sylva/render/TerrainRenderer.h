@@ -1,0 +1,96 @@
+// TerrainRenderer: the spherical geometry-clipmap terrain (seed 001 ch. 5). Owns the
+// static ring meshes, the CPU clipmaps of the height, colour and normal layers and
+// their GPU texture arrays. update() brings the clipmaps to the camera (evaluating
+// tiles through a TileProvider); draw() writes the G-buffer (albedo, normal, reversed-Z
+// depth). Lighting happens in the ShadingPass, never here.
+//
+// Precision: positions are computed relative to the camera from float offsets that
+// keep their relative precision (sylva::MapTransform), so 1.7 m eye height is stable
+// anywhere on the globe; depth is reversed-Z with an infinite far plane.
+//
+// Needs a current GL 4.5 context for create(), update() and draw(); destroy it while
+// that context is current.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include <glm/glm.hpp>
+
+#include "sylva/core/base/Result.h"
+#include "sylva/core/scene/Camera.h"
+#include "sylva/core/sources/SourceGraph.h"
+#include "sylva/core/terrain/LevelVisibility.h"
+#include "sylva/core/terrain/TerrainRings.h"
+#include "sylva/core/tiles/Clipmap.h"
+#include "sylva/render/ClipmapTexture.h"
+#include "sylva/render/ShaderLibrary.h"
+#include "sylva/render/ShaderProgram.h"
+
+namespace sylva::render {
+
+struct TerrainSettings {
+    int clipmapSize = 256;     // texels per clipmap level side (= tile size)
+    int maxLevel = 24;         // finest ring level
+    int columns = 256;         // bearing steps of the ring mesh
+    int ringsPerLevel = 24;    // rings per level
+    double maxTerrainHeight = 9000.0;  // metres, for the horizon safety margin
+};
+
+struct TerrainFrameStatistics {
+    LevelRange levels;
+    std::uint64_t triangles = 0;
+    std::uint64_t uploadedBytes = 0;
+    double updateSeconds = 0;  // CPU clipmap update including tile evaluation
+};
+
+class TerrainRenderer {
+public:
+    static Result<std::unique_ptr<TerrainRenderer>> create(const ShaderLibrary& library,
+                                                           const TerrainSettings& settings);
+    ~TerrainRenderer();
+
+    // The ring levels to draw for `camera` seen through `pixels` rows.
+    LevelRange visibleLevels(const Camera& camera, double heightAboveTerrain, int pixels) const;
+
+    // Brings every clipmap level in `levels` (and the one coarser, for blending) to the
+    // camera's nadir. A tile that fails aborts the update with its error (the message
+    // names source and tile); the levels updated before stay valid.
+    Status update(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
+                  const LevelRange& levels);
+
+    // Draws into the bound G-buffer (attachment 0: albedo, 1: normal; depth cleared
+    // to 0 beforehand). `projection` is reversed-Z.
+    void draw(const Camera& camera, const glm::dmat4& projection, const LevelRange& levels, bool ocean);
+
+    const TerrainFrameStatistics& statistics() const { return statistics_; }
+    const TerrainSettings& settings() const { return settings_; }
+
+private:
+    TerrainRenderer() = default;
+    struct Mesh {
+        std::uint32_t vertexArray = 0;
+        std::uint32_t vertexBuffer = 0;
+        std::uint32_t indexBuffer = 0;
+        std::int32_t indexCount = 0;
+    };
+    static Mesh upload(const TerrainMesh& mesh);
+    static void release(Mesh& mesh);
+
+    TerrainSettings settings_;
+    ShaderProgram program_;
+    Mesh ring_;
+    Mesh fill_;
+    std::unique_ptr<Clipmap> height_;
+    std::unique_ptr<Clipmap> color_;
+    std::unique_ptr<Clipmap> normals_;
+    ClipmapTexture heightTexture_;
+    ClipmapTexture colorTexture_;
+    ClipmapTexture normalTexture_;
+    std::uint64_t colorSourceHash_ = 0;
+    bool hasColor_ = false;
+    TerrainFrameStatistics statistics_;
+    std::uint64_t uploadedBefore_ = 0;
+};
+
+}  // namespace sylva::render

@@ -1,0 +1,60 @@
+#version 450 core
+// Spherical geometry clipmap terrain (seed 001 ch. 5): static rings on the view
+// hemisphere (TerrainRings), mapped to the ellipsoid around the viewer and displaced
+// by the height clipmap. Camera-relative throughout: the CPU passes the ground point
+// relative to the camera, the shader adds stable offsets (map_transform.glsl).
+#include "map_transform.glsl"
+#include "clipmap.glsl"
+
+layout(location = 0) in vec4 inVertex;  // view angle (level 0), blend, sin bearing, cos bearing
+layout(location = 1) in float inSeam;   // +1 first column, -1 duplicated last column
+
+uniform sampler2DArray uHeight;
+uniform int uLevel;             // ring level i: uses clipmap levels i and i - 1
+uniform float uLevelScale;      // 2^-i
+uniform float uBearingSign;     // +1: bearing 0 is north; -1: south (viewer in the south)
+uniform mat3 uMeridianToView;   // viewer's meridian frame -> view space
+uniform vec3 uGroundToCamera;   // the ground point relative to the camera, view space
+uniform mat4 uProjection;       // reversed-Z, infinite far plane
+uniform bool uOcean;            // clamp heights below 0 m to the sea surface
+
+layout(location = 0) out vec4 vDetailCoordinate;  // xy: detail level i, zw: level i - 1
+layout(location = 1) out float vBlend;
+layout(location = 2) out vec4 vHeightCoordinate;  // xy: height level i, zw: level i - 1
+layout(location = 3) out vec3 vUp;               // surface normal of the ellipsoid, view space
+layout(location = 4) out float vDistance;        // metres from the camera
+
+void main() {
+    float theta = inVertex.x * uLevelScale;
+    float blend = inVertex.y;
+    float sinBearing = inVertex.z * uBearingSign;
+    float cosBearing = inVertex.w * uBearingSign;
+    vec2 offset = mapOffset(theta, sinBearing, cosBearing);
+    // Beyond the pole the bearing-0 column meets the opposite meridian, where atan
+    // jumps between -pi and +pi: pin each copy of that column to its side (§5.4.4).
+    float px = uViewerLatitude.y * cos(theta) - uViewerLatitude.x * sin(theta) * cosBearing;
+    if (inSeam != 0.0 && px < 0.0) {
+        offset.y = PI * inSeam * uBearingSign;
+    }
+
+    int coarser = max(uLevel - 1, 0);
+    vec2 fine = clipmapCoordinate(uHeightLevels[uLevel], offset);
+    vec2 coarse = clipmapCoordinate(uHeightLevels[coarser], offset);
+    float heightFine = textureLod(uHeight, vec3(fine, float(uLevel)), 0.0).r;
+    float heightCoarse = textureLod(uHeight, vec3(coarse, float(coarser)), 0.0).r;
+    // Written so that blend == 1 gives the coarse value exactly: level borders match
+    // the next coarser level's inner ring bit for bit (no cracks).
+    float height = heightFine * (1.0 - blend) + heightCoarse * blend;
+    if (uOcean) {
+        height = max(height, 0.0);
+    }
+
+    vec3 position = uMeridianToView * ecefOffset(offset, height) + uGroundToCamera;
+    vHeightCoordinate = vec4(fine, coarse);
+    vDetailCoordinate = vec4(clipmapCoordinate(uDetailLevels[uLevel], offset),
+                             clipmapCoordinate(uDetailLevels[coarser], offset));
+    vBlend = blend;
+    vUp = uMeridianToView * surfaceUp(offset);
+    vDistance = length(position);
+    gl_Position = uProjection * vec4(position, 1.0);
+}
