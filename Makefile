@@ -5,7 +5,7 @@
 #
 # Variables (override on the command line, e.g. `make test BUILD_DIR=build-asan`):
 #   BUILD_DIR     CMake build folder (default: build)
-#   SYLVA_WERROR  ON/OFF; default ON for test and goldens, OFF for demo and build
+#   SYLVA_WERROR  ON/OFF (default ON everywhere, so demo and test share one build)
 #   JOBS          parallel build jobs (default: nproc)
 #   CMAKE_ARGS    extra arguments for the CMake configure step
 
@@ -22,7 +22,7 @@ ifdef SYLVA_WERROR
   WERROR_BUILD := $(SYLVA_WERROR)
 else
   WERROR_TEST  := ON
-  WERROR_BUILD := OFF
+  WERROR_BUILD := ON
 endif
 
 # Recipes run in bash with pipefail, so a piped ctest keeps its exit status.

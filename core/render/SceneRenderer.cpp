@@ -97,6 +97,7 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     }
     const auto start = std::chrono::steady_clock::now();
     const double near = std::clamp(0.3 * aboveTerrain, 0.02, 1.0e4);
+    near_ = near;
     const glm::dmat4 projection =
         SceneRenderer::projection(camera.verticalFov, double(settings.width) / settings.height, near);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);

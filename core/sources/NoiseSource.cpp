@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "sylva/core/base/Hash.h"
+#include "sylva/core/base/ParallelFor.h"
 #include "sylva/core/geo/Ellipsoid.h"
 
 namespace sylva {
@@ -87,7 +88,8 @@ Result<TilePointer> NoiseSource::produce(const TileKey& key, TileProvider& provi
     auto tile = std::make_shared<ImageTile>(key, format.size, format.border, 1);
     const int begin = -format.border;
     const int end = format.size + format.border;
-    for (int iy = begin; iy < end; ++iy) {
+    // Rows are independent: synthesise them in parallel (noise dominates tile cost).
+    parallelFor(begin, end, [&](int iy) {
         const double latitude = tile->texelLatitude(iy);
         const double cosLat = std::cos(latitude);
         const double sinLat = std::sin(latitude);
@@ -100,7 +102,7 @@ Result<TilePointer> NoiseSource::produce(const TileKey& key, TileProvider& provi
             const glm::dvec3 direction(cosLat * std::cos(longitude), cosLat * std::sin(longitude), sinLat);
             row[ix - begin] = static_cast<float>(height(direction, footprint));
         }
-    }
+    });
     return TilePointer(std::move(tile));
 }
 

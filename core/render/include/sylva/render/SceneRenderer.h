@@ -57,6 +57,10 @@ public:
     static glm::dmat4 projection(double verticalFov, double aspect, double near);
 
     const RenderStatistics& statistics() const { return statistics_; }
+    // Reversed-Z depth of the last render (0 = nothing drawn), rows top to bottom; and
+    // the near plane distance (metres) it was rendered with: distance = near / depth.
+    std::vector<float> depth() const { return gbuffer_.readDepth(); }
+    double near() const { return near_; }
     TerrainRenderer& terrain() { return *terrain_; }
 
 private:
@@ -68,6 +72,7 @@ private:
     Framebuffer gbuffer_;
     Framebuffer output_;
     RenderStatistics statistics_;
+    double near_ = 1.0;
 };
 
 }  // namespace sylva::render

@@ -1,0 +1,201 @@
+// Golden images of the demo project's three views (space, aircraft, ground) at
+// 320x180 on llvmpipe, plus a hole test against an analytic ray cast.
+//
+// Compared by RMSE and maximum channel error (llvmpipe is deterministic on one Mesa
+// version; the tolerance absorbs small driver changes). On failure the actual image
+// and a difference image are written to build/test-output/. Regenerate the goldens
+// only with `make goldens` (SYLVA_UPDATE_GOLDENS=1), then look at them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "sylva/core/geo/Ellipsoid.h"
+#include "sylva/core/image/ImageWriter.h"
+#include "sylva/core/scene/BlockReader.h"
+#include "sylva/core/terrain/ElevationQuery.h"
+#include "sylva/core/terrain/LevelVisibility.h"
+#include "sylva/core/tiles/TileEvaluator.h"
+#include "sylva/dsl/ProjectLoader.h"
+#include "sylva/render/GlContext.h"
+#include "sylva/render/SceneRenderer.h"
+
+namespace sylva::render {
+namespace {
+
+constexpr int kWidth = 320;
+constexpr int kHeight = 180;
+
+struct Comparison {
+    double rmse = 0;
+    int maxError = 0;
+};
+
+Comparison compare(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b,
+                   std::vector<std::uint8_t>* difference) {
+    Comparison result;
+    double sum = 0;
+    if (difference) {
+        difference->assign(a.size(), 255);
+    }
+    for (std::size_t i = 0; i < a.size(); i += 4) {
+        int pixelError = 0;
+        for (int c = 0; c < 3; ++c) {
+            const int d = std::abs(int(a[i + c]) - int(b[i + c]));
+            sum += double(d) * d;
+            pixelError = std::max(pixelError, d);
+        }
+        result.maxError = std::max(result.maxError, pixelError);
+        if (difference) {
+            const auto v = static_cast<std::uint8_t>(std::min(255, pixelError * 8));
+            (*difference)[i] = v;
+            (*difference)[i + 1] = v;
+            (*difference)[i + 2] = v;
+        }
+    }
+    result.rmse = std::sqrt(sum / (double(a.size()) / 4 * 3));
+    return result;
+}
+
+class DemoGolden : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        Result<std::unique_ptr<GlContext>> created = GlContext::create({});
+        ASSERT_TRUE(created) << created.error().message;
+        context_ = std::move(created.value()).release();
+        dsl::LoadResult loaded = dsl::loadProject(std::string(SYLVA_PROJECTS_DIR) + "/demo/demo.sylva");
+        ASSERT_FALSE(loaded.hasErrors()) << loaded.render();
+        model_ = new ProjectModel(std::move(*loaded.model));
+        Result<SourceGraph> graph = SourceGraph::build(*model_);
+        ASSERT_TRUE(graph) << graph.error().message;
+        graph_ = new SourceGraph(std::move(graph.value()));
+        Result<TerrainLayers> layers = graph_->terrainLayers(*model_, "");
+        ASSERT_TRUE(layers) << layers.error().message;
+        layers_ = layers.value();
+        evaluator_ = new TileEvaluator(TileFormat{256, 2});
+        Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(ShaderLibrary(), TerrainSettings{});
+        ASSERT_TRUE(renderer) << renderer.error().message;
+        renderer_ = renderer.value().release();
+    }
+    static void TearDownTestSuite() {
+        delete renderer_;
+        delete evaluator_;
+        delete graph_;
+        delete model_;
+        delete context_;
+    }
+
+    // Renders camera `name` of the demo with the demo's render settings.
+    static Image render(const std::string& name, Camera* cameraOut = nullptr) {
+        BlockReader block(model_->render, SchemaRegistry::builtin().find("render"));
+        RenderSettings settings;
+        settings.width = kWidth;
+        settings.height = kHeight;
+        const GeoPosition sun = *block.geo("sun");
+        settings.sunDirection = Ellipsoid::surfaceNormal(sun.latitude, sun.longitude);
+        settings.exposure = *block.optionalNumber("exposure");
+        const Block* cameraBlock = model_->findCamera(name);
+        EXPECT_NE(cameraBlock, nullptr);
+        const ElevationQuery query(*layers_.elevation, *evaluator_);
+        Result<Camera> camera = Camera::fromBlock(*cameraBlock, [&](double latitude, double longitude) -> Result<double> {
+            const LevelRange levels = LevelVisibility::visibleLevels(1.7, 1.7, 9000, 1.0, kHeight, 24);
+            Result<double> h = query.groundHeight(latitude, longitude, levels.finest);
+            return h ? Result<double>(std::max(h.value(), 0.0)) : h;
+        });
+        EXPECT_TRUE(camera) << camera.error().message;
+        if (cameraOut) {
+            *cameraOut = camera.value();
+        }
+        Result<Image> image = renderer_->render(layers_, *evaluator_, camera.value(), settings);
+        EXPECT_TRUE(image) << image.error().message;
+        return image ? image.value() : Image{};
+    }
+
+    static void checkGolden(const std::string& name) {
+        const Image image = render(name);
+        ASSERT_EQ(image.pixels.size(), std::size_t(kWidth) * kHeight * 4);
+        const std::filesystem::path golden =
+            std::filesystem::path(SYLVA_TEST_DATA_DIR) / "render" / "goldens" / ("demo_" + name + ".png");
+        const std::filesystem::path outputs = std::filesystem::path(SYLVA_TEST_OUTPUT_DIR);
+        const char* update = std::getenv("SYLVA_UPDATE_GOLDENS");
+        if (update != nullptr && std::string(update) == "1") {
+            ASSERT_TRUE(ImageWriter::writeRgba8(golden, kWidth, kHeight, image.pixels));
+            GTEST_SKIP() << "golden image updated: " << golden;
+        }
+        int width = 0, height = 0;
+        Result<std::vector<std::uint8_t>> expected = ImageWriter::readRgba8(golden, width, height);
+        ASSERT_TRUE(expected) << expected.error().message << " (create it with `make goldens`)";
+        ASSERT_EQ(width, kWidth);
+        ASSERT_EQ(height, kHeight);
+        std::vector<std::uint8_t> difference;
+        const Comparison c = compare(image.pixels, expected.value(), &difference);
+        const bool ok = c.rmse <= 2.0 && c.maxError <= 96;
+        if (!ok) {
+            (void)ImageWriter::writeRgba8(outputs / ("demo_" + name + ".actual.png"), kWidth, kHeight, image.pixels);
+            (void)ImageWriter::writeRgba8(outputs / ("demo_" + name + ".diff.png"), kWidth, kHeight, difference);
+        }
+        EXPECT_TRUE(ok) << name << ": RMSE " << c.rmse << " (limit 2.0), max error " << c.maxError
+                        << " (limit 96); actual and diff written to " << outputs;
+    }
+
+    static GlContext* context_;
+    static ProjectModel* model_;
+    static SourceGraph* graph_;
+    static TerrainLayers layers_;
+    static TileEvaluator* evaluator_;
+    static SceneRenderer* renderer_;
+};
+
+GlContext* DemoGolden::context_ = nullptr;
+ProjectModel* DemoGolden::model_ = nullptr;
+SourceGraph* DemoGolden::graph_ = nullptr;
+TerrainLayers DemoGolden::layers_;
+TileEvaluator* DemoGolden::evaluator_ = nullptr;
+SceneRenderer* DemoGolden::renderer_ = nullptr;
+
+TEST_F(DemoGolden, Space) { checkGolden("space"); }
+TEST_F(DemoGolden, Aircraft) { checkGolden("aircraft"); }
+TEST_F(DemoGolden, Ground) { checkGolden("ground"); }
+
+// No holes: every pixel whose ray hits the ellipsoid (shrunk by 2 km, more than the
+// deepest chord of the coarsest drawn ring) must show terrain, from space and from
+// the aircraft. Catches cracks between levels and missing rings.
+TEST_F(DemoGolden, NoHolesWhereTheRayHitsTheEarth) {
+    for (const std::string name : {"space", "aircraft"}) {
+        Camera camera;
+        const Image image = render(name, &camera);
+        ASSERT_FALSE(image.pixels.empty());
+        const std::vector<float> depth = renderer_->depth();
+        const double a = Ellipsoid::kSemiMajorAxis - 2000.0;
+        const double b = Ellipsoid::kSemiMinorAxis - 2000.0;
+        const double tanHalf = std::tan(camera.verticalFov / 2);
+        const double aspect = double(kWidth) / kHeight;
+        int hits = 0, holes = 0;
+        for (int y = 0; y < kHeight; ++y) {
+            for (int x = 0; x < kWidth; ++x) {
+                const double ndcX = (x + 0.5) / kWidth * 2 - 1;
+                const double ndcY = 1 - (y + 0.5) / kHeight * 2;
+                const glm::dvec3 view(ndcX * tanHalf * aspect, ndcY * tanHalf, -1.0);
+                glm::dvec3 direction = glm::normalize(camera.axes * view);
+                // Scale z so the ellipsoid becomes a sphere of radius a.
+                const glm::dvec3 o(camera.position.x, camera.position.y, camera.position.z * a / b);
+                const glm::dvec3 d = glm::normalize(glm::dvec3(direction.x, direction.y, direction.z * a / b));
+                const double B = glm::dot(o, d);
+                const double C = glm::dot(o, o) - a * a;
+                if (B * B - C > 0 && -B - std::sqrt(B * B - C) > 0) {
+                    ++hits;
+                    if (depth[std::size_t(y) * kWidth + x] <= 0.0f) {
+                        ++holes;
+                    }
+                }
+            }
+        }
+        EXPECT_GT(hits, kWidth * kHeight / 4) << name;
+        EXPECT_EQ(holes, 0) << name << ": " << holes << " of " << hits << " pixels show no terrain";
+    }
+}
+
+}  // namespace
+}  // namespace sylva::render
