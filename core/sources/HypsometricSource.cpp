@@ -134,4 +134,66 @@ Result<TilePointer> HypsometricSource::produce(const TileKey& key, TileProvider&
     return TilePointer(std::move(tile));
 }
 
+namespace {
+glm::vec3 linear(const Color& c) { return {srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b)}; }
+}  // namespace
+
+Result<std::unique_ptr<Source>> HypsometricSource::create(const SourceBuildContext& context) {
+    const Block& block = context.block;
+    const BlockReader& reader = context.reader;
+    Result<const Source*> height = context.input("height", true);
+    if (!height) {
+        return height.error();
+    }
+    Result<const Source*> normals = context.input("normals", false);
+    if (!normals) {
+        return normals.error();
+    }
+    HypsometricParameters p;
+    p.water = linear(*reader.color("water"));
+    p.shallowWater = linear(*reader.color("shallow_water"));
+    p.rock = linear(*reader.color("rock"));
+    for (auto [name, target] : {std::pair{"water_depth", &p.waterDepth},
+                                {"slope_start", &p.slopeStart},
+                                {"slope_end", &p.slopeEnd}}) {
+        Result<double> v = reader.number(name);
+        if (!v) {
+            return v.error();
+        }
+        *target = v.value();
+    }
+    if (const Value* ramp = reader.value("ramp")) {
+        const ValueList* stops = ramp->get<ValueList>();
+        if (stops == nullptr || stops->empty()) {
+            return Error{reader.where("ramp") + "'ramp' must be a non-empty list of stops"};
+        }
+        for (const Value& stop : *stops) {
+            const ValueObject* object = stop.get<ValueObject>();
+            const Quantity* stopHeight = nullptr;
+            const Color* stopColor = nullptr;
+            if (object != nullptr) {
+                for (const auto& [key, value] : *object) {
+                    if (key == "height") {
+                        stopHeight = value.get<Quantity>();
+                    } else if (key == "color") {
+                        stopColor = value.get<Color>();
+                    }
+                }
+            }
+            if (stopHeight == nullptr || stopColor == nullptr ||
+                (stopHeight->dimension != Dimension::Length && stopHeight->dimension != Dimension::None)) {
+                return Error{stop.location.toString() + ": source '" + block.name +
+                             "': a ramp stop must be { height = <length>, color = <colour> }"};
+            }
+            if (!p.ramp.empty() && stopHeight->value < p.ramp.back().height) {
+                return Error{stop.location.toString() + ": source '" + block.name +
+                             "': ramp stops must be in ascending height"};
+            }
+            p.ramp.push_back({stopHeight->value, linear(*stopColor)});
+        }
+    }
+    return std::unique_ptr<Source>(
+        std::make_unique<HypsometricSource>(block.name, height.value(), normals.value(), std::move(p)));
+}
+
 }  // namespace sylva

@@ -106,4 +106,35 @@ Result<TilePointer> NoiseSource::produce(const TileKey& key, TileProvider& provi
     return TilePointer(std::move(tile));
 }
 
+Result<std::unique_ptr<Source>> NoiseSource::create(const SourceBuildContext& context) {
+    const Block& block = context.block;
+    const BlockReader& reader = context.reader;
+    NoiseParameters p;
+    for (auto [name, target] : {std::pair{"amplitude", &p.amplitude},
+                                {"base_wavelength", &p.baseWavelength},
+                                {"lacunarity", &p.lacunarity},
+                                {"gain", &p.gain},
+                                {"ridges", &p.ridges},
+                                {"ridge_wavelength", &p.ridgeWavelength},
+                                {"roughness", &p.roughness},
+                                {"offset", &p.offset}}) {
+        Result<double> v = reader.number(name);
+        if (!v) {
+            return v.error();
+        }
+        *target = v.value();
+    }
+    Result<double> seed = reader.number("seed");
+    Result<double> octaves = reader.number("octaves");
+    if (!seed) {
+        return seed.error();
+    }
+    if (!octaves) {
+        return octaves.error();
+    }
+    p.seed = static_cast<std::uint32_t>(seed.value());
+    p.octaves = static_cast<int>(octaves.value());
+    return std::unique_ptr<Source>(std::make_unique<NoiseSource>(block.name, p));
+}
+
 }  // namespace sylva

@@ -56,4 +56,19 @@ Result<TilePointer> NormalMapSource::produce(const TileKey& key, TileProvider& p
     return TilePointer(std::move(tile));
 }
 
+Result<std::unique_ptr<Source>> NormalMapSource::create(const SourceBuildContext& context) {
+    const Block& block = context.block;
+    const BlockReader& reader = context.reader;
+    Result<const Source*> height = context.input("height", true);
+    if (!height) {
+        return height.error();
+    }
+    Result<double> exaggeration = reader.number("exaggeration");
+    if (!exaggeration) {
+        return exaggeration.error();
+    }
+    return std::unique_ptr<Source>(
+        std::make_unique<NormalMapSource>(block.name, height.value(), exaggeration.value()));
+}
+
 }  // namespace sylva

@@ -4,120 +4,17 @@
 #include <map>
 #include <set>
 
-#include "sylva/core/image/ColorSpace.h"
 #include "sylva/core/scene/BlockReader.h"
-#include "sylva/core/sources/HypsometricSource.h"
-#include "sylva/core/sources/NoiseSource.h"
 #include "sylva/core/sources/NormalMapSource.h"
+#include "sylva/core/sources/SourceFactory.h"
 
 namespace sylva {
 namespace {
 
-glm::vec3 linear(const Color& c) {
-    return {srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b)};
-}
-
 using Resolve = std::function<Result<const Source*>(const BlockReader&, std::string_view, bool)>;
 
-Result<std::unique_ptr<Source>> createNoise(const Block& block, const BlockReader& reader) {
-    NoiseParameters p;
-    for (auto [name, target] : {std::pair{"amplitude", &p.amplitude},
-                                {"base_wavelength", &p.baseWavelength},
-                                {"lacunarity", &p.lacunarity},
-                                {"gain", &p.gain},
-                                {"ridges", &p.ridges},
-                                {"ridge_wavelength", &p.ridgeWavelength},
-                                {"roughness", &p.roughness},
-                                {"offset", &p.offset}}) {
-        Result<double> v = reader.number(name);
-        if (!v) {
-            return v.error();
-        }
-        *target = v.value();
-    }
-    Result<double> seed = reader.number("seed");
-    Result<double> octaves = reader.number("octaves");
-    if (!seed) {
-        return seed.error();
-    }
-    if (!octaves) {
-        return octaves.error();
-    }
-    p.seed = static_cast<std::uint32_t>(seed.value());
-    p.octaves = static_cast<int>(octaves.value());
-    return std::unique_ptr<Source>(std::make_unique<NoiseSource>(block.name, p));
-}
 
-Result<std::unique_ptr<Source>> createNormalMap(const Block& block, const BlockReader& reader,
-                                                const Resolve& resolve) {
-    Result<const Source*> height = resolve(reader, "height", true);
-    if (!height) {
-        return height.error();
-    }
-    Result<double> exaggeration = reader.number("exaggeration");
-    if (!exaggeration) {
-        return exaggeration.error();
-    }
-    return std::unique_ptr<Source>(
-        std::make_unique<NormalMapSource>(block.name, height.value(), exaggeration.value()));
-}
 
-Result<std::unique_ptr<Source>> createHypsometric(const Block& block, const BlockReader& reader,
-                                                  const Resolve& resolve) {
-    Result<const Source*> height = resolve(reader, "height", true);
-    if (!height) {
-        return height.error();
-    }
-    Result<const Source*> normals = resolve(reader, "normals", false);
-    if (!normals) {
-        return normals.error();
-    }
-    HypsometricParameters p;
-    p.water = linear(*reader.color("water"));
-    p.shallowWater = linear(*reader.color("shallow_water"));
-    p.rock = linear(*reader.color("rock"));
-    for (auto [name, target] : {std::pair{"water_depth", &p.waterDepth},
-                                {"slope_start", &p.slopeStart},
-                                {"slope_end", &p.slopeEnd}}) {
-        Result<double> v = reader.number(name);
-        if (!v) {
-            return v.error();
-        }
-        *target = v.value();
-    }
-    if (const Value* ramp = reader.value("ramp")) {
-        const ValueList* stops = ramp->get<ValueList>();
-        if (stops == nullptr || stops->empty()) {
-            return Error{reader.where("ramp") + "'ramp' must be a non-empty list of stops"};
-        }
-        for (const Value& stop : *stops) {
-            const ValueObject* object = stop.get<ValueObject>();
-            const Quantity* stopHeight = nullptr;
-            const Color* stopColor = nullptr;
-            if (object != nullptr) {
-                for (const auto& [key, value] : *object) {
-                    if (key == "height") {
-                        stopHeight = value.get<Quantity>();
-                    } else if (key == "color") {
-                        stopColor = value.get<Color>();
-                    }
-                }
-            }
-            if (stopHeight == nullptr || stopColor == nullptr ||
-                (stopHeight->dimension != Dimension::Length && stopHeight->dimension != Dimension::None)) {
-                return Error{stop.location.toString() + ": source '" + block.name +
-                             "': a ramp stop must be { height = <length>, color = <colour> }"};
-            }
-            if (!p.ramp.empty() && stopHeight->value < p.ramp.back().height) {
-                return Error{stop.location.toString() + ": source '" + block.name +
-                             "': ramp stops must be in ascending height"};
-            }
-            p.ramp.push_back({stopHeight->value, linear(*stopColor)});
-        }
-    }
-    return std::unique_ptr<Source>(
-        std::make_unique<HypsometricSource>(block.name, height.value(), normals.value(), std::move(p)));
-}
 
 }  // namespace
 
@@ -142,6 +39,8 @@ Result<SourceGraph> SourceGraph::build(const ProjectModel& model) {
         blocks.emplace(block.name, &block);
     }
     std::set<std::string, std::less<>> visiting;
+    const std::filesystem::path projectFolder =
+        model.file.has_parent_path() ? model.file.parent_path() : std::filesystem::path(".");
     std::function<Result<const Source*>(const Block&)> create;
 
     Resolve resolve = [&](const BlockReader& reader, std::string_view attribute,
@@ -184,18 +83,17 @@ Result<SourceGraph> SourceGraph::build(const ProjectModel& model) {
             return Error{block.location.toString() + ": source '" + block.name +
                          "': unknown source kind '" + block.kind + "'"};
         }
-        visiting.insert(block.name);
-        Result<std::unique_ptr<Source>> made = Error{""};
-        if (block.kind == "noise") {
-            made = createNoise(block, reader);
-        } else if (block.kind == "normal_map") {
-            made = createNormalMap(block, reader, resolve);
-        } else if (block.kind == "hypsometric") {
-            made = createHypsometric(block, reader, resolve);
-        } else {
-            made = Error{block.location.toString() + ": source '" + block.name + "': kind '" +
-                         block.kind + "' has no implementation in this build"};
+        const SourceCreator creator = findSourceCreator(block.kind);
+        if (creator == nullptr) {
+            return Error{block.location.toString() + ": source '" + block.name + "': kind '" + block.kind +
+                         "' has no implementation in this build"};
         }
+        visiting.insert(block.name);
+        const InputResolver input = [&](std::string_view attribute, bool required) {
+            return resolve(reader, attribute, required);
+        };
+        const SourceBuildContext context{block, reader, input, projectFolder};
+        Result<std::unique_ptr<Source>> made = creator(context);
         visiting.erase(block.name);
         if (!made) {
             return made.error();

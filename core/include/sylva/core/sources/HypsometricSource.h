@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "sylva/core/sources/Source.h"
+#include "sylva/core/sources/SourceFactory.h"
 
 namespace sylva {
 
@@ -34,6 +35,9 @@ public:
     // `normals` may be null: slopes then come from `height` directly.
     HypsometricSource(std::string name, const Source* height, const Source* normals,
                       HypsometricParameters parameters);
+
+    // From a `source x : hypsometric` block.
+    static Result<std::unique_ptr<Source>> create(const SourceBuildContext& context);
 
     Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override;
 

@@ -11,6 +11,7 @@
 
 #include "sylva/core/sources/GradientNoise.h"
 #include "sylva/core/sources/Source.h"
+#include "sylva/core/sources/SourceFactory.h"
 
 namespace sylva {
 
@@ -30,6 +31,9 @@ struct NoiseParameters {
 class NoiseSource final : public Source {
 public:
     NoiseSource(std::string name, const NoiseParameters& parameters);
+
+    // From a `source x : noise` block.
+    static Result<std::unique_ptr<Source>> create(const SourceBuildContext& context);
 
     Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override;
 

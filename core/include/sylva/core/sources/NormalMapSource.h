@@ -9,12 +9,16 @@
 #include <glm/glm.hpp>
 
 #include "sylva/core/sources/Source.h"
+#include "sylva/core/sources/SourceFactory.h"
 
 namespace sylva {
 
 class NormalMapSource final : public Source {
 public:
     NormalMapSource(std::string name, const Source* height, double exaggeration);
+
+    // From a `source x : normal_map` block.
+    static Result<std::unique_ptr<Source>> create(const SourceBuildContext& context);
 
     Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override;
 
