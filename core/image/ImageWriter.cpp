@@ -28,6 +28,9 @@ Status ImageWriter::writeRgba8(const std::filesystem::path& path, int width, int
     }
     OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "sRGB");
+    // Our pixels have straight (unassociated) alpha, as PNG stores it: without this
+    // OIIO takes them as premultiplied and divides on write.
+    spec.attribute("oiio:UnassociatedAlpha", 1);
     spec.attribute("Software", "Sylva");
     bool ok = output->open(temporary.string(), spec) && output->write_image(OIIO::TypeDesc::UINT8, pixels.data());
     std::string reason = ok ? "" : output->geterror();
@@ -49,7 +52,10 @@ Status ImageWriter::writeRgba8(const std::filesystem::path& path, int width, int
 }
 
 Result<std::vector<std::uint8_t>> ImageWriter::readRgba8(const std::filesystem::path& path, int& width, int& height) {
-    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path.string());
+    // Keep alpha straight on reading too (OIIO premultiplies by default).
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path.string(), &config);
     if (!input) {
         return Error{path.string() + ": cannot read image: " + OIIO::geterror()};
     }

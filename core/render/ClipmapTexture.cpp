@@ -3,6 +3,7 @@
 #include <glad/gl.h>
 
 #include <algorithm>
+#include <cstring>
 #include <utility>
 
 #include "sylva/core/image/ColorSpace.h"
@@ -40,6 +41,9 @@ ClipmapTexture::~ClipmapTexture() {
     if (texture_ != 0) {
         glDeleteTextures(1, &texture_);
     }
+    if (pixelBuffer_ != 0) {
+        glDeleteBuffers(1, &pixelBuffer_);
+    }
 }
 
 ClipmapTexture::ClipmapTexture(ClipmapTexture&& other) noexcept { *this = std::move(other); }
@@ -49,58 +53,79 @@ ClipmapTexture& ClipmapTexture::operator=(ClipmapTexture&& other) noexcept {
         if (texture_ != 0) {
             glDeleteTextures(1, &texture_);
         }
+        if (pixelBuffer_ != 0) {
+            glDeleteBuffers(1, &pixelBuffer_);
+        }
         texture_ = std::exchange(other.texture_, 0);
+        pixelBuffer_ = std::exchange(other.pixelBuffer_, 0);
         size_ = other.size_;
         levels_ = other.levels_;
         format_ = other.format_;
         uploadedBytes_ = other.uploadedBytes_;
-        staging_ = std::move(other.staging_);
     }
     return *this;
 }
 
 void ClipmapTexture::upload(const Clipmap& clipmap, const std::vector<Clipmap::Region>& regions) {
     SYLVA_CHECK(clipmap.size() == size_ && clipmap.levelCount() <= levels_);
+    if (regions.empty()) {
+        return;
+    }
     const int channels = clipmap.channels();
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    // Colour goes up as sRGB bytes (the GPU decodes before filtering); height and
+    // normals as the floats of the CPU clipmap.
+    const bool bytes = format_ == ClipmapFormat::Color;
+    const std::size_t texelBytes = bytes ? 4 : channels * sizeof(float);
+    std::size_t total = 0;
     for (const Clipmap::Region& region : regions) {
+        total += std::size_t(region.width) * region.height * texelBytes;
+    }
+    if (pixelBuffer_ == 0) {
+        glCreateBuffers(1, &pixelBuffer_);
+    }
+    // Orphan the previous storage so a transfer still in flight is never waited for.
+    glNamedBufferData(pixelBuffer_, GLsizeiptr(total), nullptr, GL_STREAM_DRAW);
+    auto* mapped = static_cast<std::uint8_t*>(
+        glMapNamedBufferRange(pixelBuffer_, 0, GLsizeiptr(total), GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT));
+    SYLVA_CHECK_MESSAGE(mapped != nullptr, "ClipmapTexture: cannot map the pixel buffer");
+    std::size_t offset = 0;
+    std::vector<std::size_t> offsets;
+    offsets.reserve(regions.size());
+    for (const Clipmap::Region& region : regions) {
+        offsets.push_back(offset);
         const std::vector<float>& data = clipmap.data(region.level);
-        if (format_ == ClipmapFormat::Color) {
-            // Encode to sRGB bytes on the CPU; the GPU decodes before filtering.
-            staging_.resize(std::size_t(region.width) * region.height * 4);
-            for (int y = 0; y < region.height; ++y) {
-                const float* source = data.data() + (std::size_t(region.y + y) * size_ + region.x) * channels;
-                std::uint8_t* target = staging_.data() + std::size_t(y) * region.width * 4;
-                for (int x = 0; x < region.width; ++x) {
-                    for (int c = 0; c < 4; ++c) {
-                        const float value = c < channels ? source[x * channels + c] : 1.0f;
-                        const float encoded = c < 3 ? linearToSrgb(value) : value;
-                        target[x * 4 + c] =
-                            static_cast<std::uint8_t>(std::clamp(encoded, 0.0f, 1.0f) * 255.0f + 0.5f);
-                    }
+        for (int y = 0; y < region.height; ++y) {
+            const float* source = data.data() + (std::size_t(region.y + y) * size_ + region.x) * channels;
+            std::uint8_t* target = mapped + offset + std::size_t(y) * region.width * texelBytes;
+            if (!bytes) {
+                std::memcpy(target, source, std::size_t(region.width) * texelBytes);
+                continue;
+            }
+            for (int x = 0; x < region.width; ++x) {
+                for (int c = 0; c < 4; ++c) {
+                    const float value = c < channels ? source[x * channels + c] : 1.0f;
+                    const float encoded = c < 3 ? linearToSrgb(value) : value;
+                    target[x * 4 + c] = static_cast<std::uint8_t>(std::clamp(encoded, 0.0f, 1.0f) * 255.0f + 0.5f);
                 }
             }
-            glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-            glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
-            glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
-            glTextureSubImage3D(texture_, 0, region.x, region.y, region.level, region.width, region.height, 1,
-                                GL_RGBA, GL_UNSIGNED_BYTE, staging_.data());
-            uploadedBytes_ += staging_.size();
-        } else {
-            // Floats straight from the clipmap: the row length skips the rest of the level.
-            glPixelStorei(GL_UNPACK_ROW_LENGTH, size_);
-            glPixelStorei(GL_UNPACK_SKIP_PIXELS, region.x);
-            glPixelStorei(GL_UNPACK_SKIP_ROWS, region.y);
-            const GLenum layout = channels == 1 ? GL_RED : channels == 2 ? GL_RG : channels == 3 ? GL_RGB : GL_RGBA;
-            glTextureSubImage3D(texture_, 0, region.x, region.y, region.level, region.width, region.height, 1,
-                                layout, GL_FLOAT, data.data());
-            uploadedBytes_ += std::uint64_t(region.width) * region.height * channels * sizeof(float);
         }
+        offset += std::size_t(region.width) * region.height * texelBytes;
     }
+    glUnmapNamedBuffer(pixelBuffer_);
+
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, pixelBuffer_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
-    glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
+    const GLenum layout = bytes ? GL_RGBA : channels == 1 ? GL_RED : channels == 2 ? GL_RG : channels == 3 ? GL_RGB : GL_RGBA;
+    const GLenum type = bytes ? GL_UNSIGNED_BYTE : GL_FLOAT;
+    for (std::size_t i = 0; i < regions.size(); ++i) {
+        const Clipmap::Region& region = regions[i];
+        glTextureSubImage3D(texture_, 0, region.x, region.y, region.level, region.width, region.height, 1, layout, type,
+                            reinterpret_cast<const void*>(offsets[i]));
+    }
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    uploadedBytes_ += total;
 }
 
 void ClipmapTexture::bind(int unit) const { glBindTextureUnit(static_cast<GLuint>(unit), texture_); }

@@ -20,7 +20,8 @@ struct TileKey {
     std::int32_t x = 0;              // column, 0 .. columns - 1
     std::int32_t y = 0;              // row, 0 .. rows - 1
 
-    static constexpr std::int32_t kMaxLevel = 30;
+    // 2^(level+1) columns must fit an int32: level 29 has texels of ~1 mm at 256².
+    static constexpr std::int32_t kMaxLevel = 29;
 
     std::int32_t columns() const { return columns(level, lonReduction); }
     std::int32_t rows() const { return rows(level); }

@@ -1,7 +1,9 @@
 // ClipmapTexture: the GPU side of one clipmap layer, a 2D texture array with one
 // layer per clipmap level (seed 001 §4.3.1). Uploads exactly the regions the CPU
-// Clipmap reports as changed and counts the bytes it sends. Sampled with GL_REPEAT
-// so the toroidal addressing needs no shader logic.
+// Clipmap reports as changed, packed into one pixel buffer object per update
+// (orphaned and mapped for writing, so the driver can copy asynchronously while the
+// CPU goes on), and counts the bytes it sends. Sampled with GL_REPEAT so the toroidal
+// addressing needs no shader logic.
 //
 // Ownership: move-only RAII over the GL texture; destroy it while its context is
 // current. Needs a current GL 4.5 context for every call.
@@ -45,7 +47,7 @@ private:
     int levels_ = 0;
     ClipmapFormat format_ = ClipmapFormat::Height;
     std::uint64_t uploadedBytes_ = 0;
-    std::vector<std::uint8_t> staging_;
+    std::uint32_t pixelBuffer_ = 0;
 };
 
 }  // namespace sylva::render

@@ -1,0 +1,75 @@
+#include "sylva/core/image/ImageWriter.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace sylva {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+    const fs::path folder = fs::temp_directory_path() / ("sylva-imagewriter-" + std::to_string(::getpid())) / name;
+    fs::remove_all(folder);
+    fs::create_directories(folder);
+    return folder;
+}
+
+void roundTrip(const std::string& name, bool opaque) {
+    const fs::path folder = scratch(name);
+    const int width = 5, height = 3;
+    std::vector<std::uint8_t> pixels(std::size_t(width) * height * 4);
+    for (std::size_t i = 0; i < pixels.size(); ++i) {
+        pixels[i] = static_cast<std::uint8_t>((i * 37 + 11) % 256);
+        if (opaque && i % 4 == 3) {
+            pixels[i] = 255;
+        }
+    }
+    const fs::path path = folder / "sub" / "image.png";  // missing parent is created
+    const Status written = ImageWriter::writeRgba8(path, width, height, pixels);
+    ASSERT_TRUE(written) << written.error().message;
+    ASSERT_TRUE(fs::is_regular_file(path));
+    for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+        EXPECT_NE(entry.path().filename().string().rfind(".sylva-", 0), 0u) << "temporary left: " << entry.path();
+    }
+    int w = 0, h = 0;
+    Result<std::vector<std::uint8_t>> read = ImageWriter::readRgba8(path, w, h);
+    ASSERT_TRUE(read) << read.error().message;
+    EXPECT_EQ(w, width);
+    EXPECT_EQ(h, height);
+    EXPECT_EQ(read.value(), pixels);
+    fs::remove_all(folder);
+}
+
+TEST(ImageWriter, WritesAtomicallyAndReadsBack) { roundTrip("opaque", true); }
+
+TEST(ImageWriter, TranslucentPixelsReadBackUnchanged) {
+    roundTrip("translucent", false);
+}
+
+TEST(ImageWriter, ParentIsARegularFile) {
+    const fs::path folder = scratch("blocked");
+    const fs::path file = folder / "not-a-folder";
+    std::ofstream(file) << "x";
+    const fs::path path = file / "image.png";
+    const Status written = ImageWriter::writeRgba8(path, 1, 1, {0, 0, 0, 255});
+    ASSERT_FALSE(written);
+    EXPECT_NE(written.error().message.find(path.string()), std::string::npos) << written.error().message;
+    EXPECT_EQ(fs::file_size(file), 1u);
+    fs::remove_all(folder.parent_path());
+}
+
+TEST(ImageWriter, ReadingAMissingFileFailsWithThePath) {
+    int w = 0, h = 0;
+    const fs::path path = scratch("missing") / "none.png";
+    Result<std::vector<std::uint8_t>> read = ImageWriter::readRgba8(path, w, h);
+    ASSERT_FALSE(read);
+    EXPECT_NE(read.error().message.find(path.string()), std::string::npos) << read.error().message;
+    fs::remove_all(path.parent_path().parent_path());
+}
+
+}  // namespace
+}  // namespace sylva
