@@ -212,6 +212,7 @@ int runRender(const std::vector<std::string>& arguments) {
     TileEvaluator evaluator(TileFormat{terrainSettings.clipmapSize, 2});
 
     int failures = 0;
+    int degraded = 0;
     for (const Job& job : jobs) {
         const auto start = std::chrono::steady_clock::now();
         const std::size_t tilesBefore = evaluator.statistics().misses;
@@ -255,6 +256,13 @@ int runRender(const std::vector<std::string>& arguments) {
         }
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const render::RenderStatistics& stats = renderer.value()->statistics();
+        if (!stats.terrain.degraded.empty()) {
+            // The image is written (coarser data is better than none), but the exit
+            // status must say that data was missing.
+            reportError(job.camera->location.toString() + ": camera '" + job.camera->name +
+                        "': drawn with coarser terrain: " + stats.terrain.degraded);
+            ++degraded;
+        }
         std::printf("%s  %dx%d  %.2f s  (levels %d-%d, %llu triangles, %zu tiles)\n", job.output.string().c_str(),
                     image->width, image->height, seconds, stats.terrain.levels.coarsest, stats.terrain.levels.finest,
                     static_cast<unsigned long long>(stats.terrain.triangles), evaluator.statistics().misses - tilesBefore);
@@ -262,6 +270,11 @@ int runRender(const std::vector<std::string>& arguments) {
     }
     if (failures > 0) {
         reportError(std::to_string(failures) + " of " + std::to_string(jobs.size()) + " images could not be rendered");
+        return 1;
+    }
+    if (degraded > 0) {
+        reportError(std::to_string(degraded) + " of " + std::to_string(jobs.size()) +
+                    " images were rendered with missing data");
         return 1;
     }
     return 0;

@@ -92,9 +92,11 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     levels = terrain_->visibleLevels(camera, aboveTerrain, settings.height);
     statistics_.heightAboveTerrain = aboveTerrain;
 
-    if (Status status = terrain_->update(layers, provider, camera, levels); !status) {
-        return status.error();
+    Result<LevelRange> ready = terrain_->update(layers, provider, camera, levels);
+    if (!ready) {
+        return ready.error();
     }
+    levels = ready.value();
     const auto start = std::chrono::steady_clock::now();
     const double near = std::clamp(0.3 * aboveTerrain, 0.02, 1.0e4);
     near_ = near;

@@ -99,8 +99,9 @@ LevelRange TerrainRenderer::visibleLevels(const Camera& camera, double heightAbo
                                           camera.verticalFov, pixels, settings_.maxLevel);
 }
 
-Status TerrainRenderer::update(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
-                               const LevelRange& levels) {
+Result<LevelRange> TerrainRenderer::update(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
+                                           const LevelRange& wanted,
+                                           std::optional<std::chrono::steady_clock::time_point> deadline) {
     SYLVA_CHECK(layers.elevation != nullptr && layers.normals != nullptr);
     const auto start = std::chrono::steady_clock::now();
     const double latitude = camera.geodetic.latitude;
@@ -124,30 +125,49 @@ Status TerrainRenderer::update(const TerrainLayers& layers, TileProvider& provid
     const Layer layerList[] = {{height_.get(), &heightTexture_, layers.elevation, kHeightLevelOffset},
                                {normals_.get(), &normalTexture_, layers.normals, kDetailLevelOffset},
                                {color_.get(), &colorTexture_, layers.color, kDetailLevelOffset}};
-    for (const Layer& layer : layerList) {
-        if (layer.source == nullptr) {
-            continue;
-        }
-        const Clipmap::Fetch fetch = [&](const TileKey& key) { return provider.tile(*layer.source, key); };
-        for (int level = std::max(0, levels.coarsest - 1); level <= levels.finest; ++level) {
+    statistics_.wanted = wanted;
+    statistics_.degraded.clear();
+    LevelRange drawn = wanted;
+    // Coarse to fine: the coarser neighbour of the coarsest ring is needed for blending.
+    for (int level = std::max(0, wanted.coarsest - 1); level <= wanted.finest; ++level) {
+        Status status;
+        for (const Layer& layer : layerList) {
+            if (layer.source == nullptr) {
+                continue;
+            }
             const ClipmapWindow window = Clipmap::windowFor(level, latitude, longitude, size, layer.levelOffset);
             if (layer.clipmap->valid(level) && layer.clipmap->window(level) == window) {
                 continue;
             }
-            Status status = layer.clipmap->update(level, window, fetch);
+            const Clipmap::Fetch fetch = [&](const TileKey& key) { return provider.tile(*layer.source, key); };
+            status = layer.clipmap->update(level, window, fetch);
             layer.texture->upload(*layer.clipmap, layer.clipmap->takeDirtyRegions());
             if (!status) {
-                return status;
+                break;
             }
+        }
+        if (!status) {
+            if (level <= wanted.coarsest) {
+                return status.error();
+            }
+            drawn.finest = level - 1;
+            statistics_.degraded = "level " + std::to_string(level) + " failed, drawing up to level " +
+                                   std::to_string(drawn.finest) + ": " + status.error().message;
+            break;
+        }
+        if (deadline && level >= wanted.coarsest && level < wanted.finest &&
+            std::chrono::steady_clock::now() > *deadline) {
+            drawn.finest = level;
+            statistics_.degraded = "time limit reached after level " + std::to_string(level);
+            break;
         }
     }
     const std::uint64_t uploaded =
         heightTexture_.uploadedBytes() + normalTexture_.uploadedBytes() + colorTexture_.uploadedBytes();
     statistics_.uploadedBytes = uploaded - uploadedBefore_;
     uploadedBefore_ = uploaded;
-    statistics_.updateSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return Status::success();
+    statistics_.updateSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return drawn;
 }
 
 void TerrainRenderer::draw(const Camera& camera, const glm::dmat4& projection, const LevelRange& levels,

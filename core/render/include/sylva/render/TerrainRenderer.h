@@ -12,8 +12,11 @@
 // that context is current.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include <glm/glm.hpp>
 
@@ -38,7 +41,9 @@ struct TerrainSettings {
 };
 
 struct TerrainFrameStatistics {
-    LevelRange levels;
+    LevelRange levels;           // levels drawn
+    LevelRange wanted;           // levels the view asked for
+    std::string degraded;        // why fewer levels were drawn than wanted; empty if none
     std::uint64_t triangles = 0;
     std::uint64_t uploadedBytes = 0;
     double updateSeconds = 0;  // CPU clipmap update including tile evaluation
@@ -53,11 +58,16 @@ public:
     // The ring levels to draw for `camera` seen through `pixels` rows.
     LevelRange visibleLevels(const Camera& camera, double heightAboveTerrain, int pixels) const;
 
-    // Brings every clipmap level in `levels` (and the one coarser, for blending) to the
-    // camera's nadir. A tile that fails aborts the update with its error (the message
-    // names source and tile); the levels updated before stay valid.
-    Status update(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
-                  const LevelRange& levels);
+    // Brings the clipmap levels of `wanted` (and the one coarser, for blending) to
+    // the camera's nadir, coarse to fine, as in seed 001 Algorithm 3 (§4.7): a level
+    // is drawn as a ring only when all its layers are ready; when a finer level fails
+    // (a tile error) or the deadline passes, drawing stops at the last ready level,
+    // whose fill disk then covers the nadir, so a missing level never leaves a hole.
+    // Returns the levels to draw (statistics().degraded says why fewer), or the error
+    // when not even the coarsest level could be made.
+    Result<LevelRange> update(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
+                              const LevelRange& wanted,
+                              std::optional<std::chrono::steady_clock::time_point> deadline = std::nullopt);
 
     // Draws into the bound G-buffer (attachment 0: albedo, 1: normal; depth cleared
     // to 0 beforehand). `projection` is reversed-Z.
