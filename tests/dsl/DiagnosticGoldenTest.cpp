@@ -250,7 +250,7 @@ TEST(DiagnosticGolden, UnknownAttribute) {
 1 | source n : noise { amplitud = 2km }
   |                    ^^^^^^^^ not an attribute of noise source
   = help: did you mean 'amplitude'?
-  = help: valid attributes: seed, amplitude, base_wavelength, octaves, lacunarity, gain, ridges, offset
+  = help: valid attributes: seed, amplitude, base_wavelength, octaves, lacunarity, gain, ridges, ridge_wavelength, roughness, offset
 )SYLVA");
 }
 
