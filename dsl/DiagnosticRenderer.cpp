@@ -95,6 +95,10 @@ std::string DiagnosticRenderer::render(const Diagnostic& diagnostic, bool colour
         }
         out += "\n";
     }
+    if (!diagnostic.cycle.empty()) {
+        out += gutter + blue + "=" + reset + " " + bold + "cycle" + reset + ": " +
+               diagnostic.cycle + "\n";
+    }
     for (const std::string& help : diagnostic.help) {
         out += gutter + blue + "=" + reset + " " + bold + "help" + reset + ": " + help + "\n";
     }

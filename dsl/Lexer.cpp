@@ -82,6 +82,9 @@ void Lexer::push(TokenKind kind, std::size_t start, std::size_t length) {
     token.kind = kind;
     token.text = std::string(text_.substr(start, length));
     token.location = locationAt(start, length);
+    token.offset = start;
+    token.spaceBefore = start != lastEnd_ || start == lineStart_;
+    lastEnd_ = start + length;
     tokens_.push_back(std::move(token));
 }
 
@@ -124,21 +127,47 @@ std::vector<Token> Lexer::tokenize() {
             if (colourContext() && isHex(next)) {
                 lexColour();
             } else {
+                std::size_t start = pos_;
                 while (pos_ < text_.size() && text_[pos_] != '\n') {
                     ++pos_;
                 }
+                if (keepComments_) {
+                    push(TokenKind::Comment, start, pos_ - start);
+                }
             }
         } else if (c == '/' && next == '/') {
+            std::size_t start = pos_;
             while (pos_ < text_.size() && text_[pos_] != '\n') {
                 ++pos_;
             }
+            if (keepComments_) {
+                push(TokenKind::Comment, start, pos_ - start);
+            }
         } else if (c == '/' && next == '*') {
+            std::size_t start = pos_;
+            std::uint32_t startLine = line_;
+            std::size_t startLineStart = lineStart_;
             skipBlockComment();
+            if (keepComments_) {
+                Token token;
+                token.kind = TokenKind::Comment;
+                token.text = std::string(text_.substr(start, pos_ - start));
+                token.location.file = file_;
+                token.location.line = startLine;
+                token.location.column = static_cast<std::uint32_t>(start - startLineStart + 1);
+                token.location.length = 2;
+                token.offset = start;
+                token.spaceBefore = start != lastEnd_ || start == startLineStart;
+                lastEnd_ = pos_;
+                tokens_.push_back(std::move(token));
+            }
         } else if (c == '/' && next == '-') {
             push(TokenKind::SlashDash, pos_, 2);
             pos_ += 2;
         } else if (isDigit(c)) {
-            lexNumber();
+            if (!lexDateTime()) {
+                lexNumber();
+            }
         } else if (isIdentStart(c)) {
             std::size_t start = pos_;
             while (pos_ < text_.size() && isIdentChar(text_[pos_])) {
@@ -158,9 +187,12 @@ std::vector<Token> Lexer::tokenize() {
             }
             std::string name(text_.substr(nameStart, pos_ - nameStart));
             std::string field;
+            // `@ns.name.field`: every dotted part after the first goes into `field`.
             if (pos_ + 1 < text_.size() && text_[pos_] == '.' && isIdentStart(text_[pos_ + 1])) {
                 std::size_t fieldStart = ++pos_;
-                while (pos_ < text_.size() && isIdentChar(text_[pos_])) {
+                while (pos_ < text_.size() && (isIdentChar(text_[pos_]) ||
+                                               (text_[pos_] == '.' && pos_ + 1 < text_.size() &&
+                                                isIdentStart(text_[pos_ + 1])))) {
                     ++pos_;
                 }
                 field = std::string(text_.substr(fieldStart, pos_ - fieldStart));
@@ -195,7 +227,31 @@ std::vector<Token> Lexer::tokenize() {
                     kind = TokenKind::Comma;
                     break;
                 case '=':
-                    kind = TokenKind::Equals;
+                    kind = next == '=' ? TokenKind::EqualEqual : TokenKind::Equals;
+                    break;
+                case '!':
+                    kind = next == '=' ? TokenKind::BangEqual : TokenKind::Bang;
+                    break;
+                case '<':
+                    kind = next == '=' ? TokenKind::LessEqual : TokenKind::Less;
+                    break;
+                case '>':
+                    kind = next == '=' ? TokenKind::GreaterEqual : TokenKind::Greater;
+                    break;
+                case '&':
+                    kind = next == '&' ? TokenKind::AndAnd : TokenKind::EndOfFile;
+                    break;
+                case '|':
+                    kind = next == '|' ? TokenKind::OrOr : TokenKind::EndOfFile;
+                    break;
+                case '?':
+                    kind = TokenKind::Question;
+                    break;
+                case '%':
+                    kind = TokenKind::Percent;
+                    break;
+                case '.':
+                    kind = TokenKind::Dot;
                     break;
                 case ':':
                     kind = TokenKind::Colon;
@@ -204,10 +260,10 @@ std::vector<Token> Lexer::tokenize() {
                     kind = TokenKind::Semicolon;
                     break;
                 case '+':
-                    kind = TokenKind::Plus;
+                    kind = next == '=' ? TokenKind::PlusEquals : TokenKind::Plus;
                     break;
                 case '-':
-                    kind = TokenKind::Minus;
+                    kind = next == '=' ? TokenKind::MinusEquals : TokenKind::Minus;
                     break;
                 case '*':
                     kind = TokenKind::Star;
@@ -221,8 +277,23 @@ std::vector<Token> Lexer::tokenize() {
             if (kind == TokenKind::EndOfFile) {
                 lexUnexpected();
             } else {
-                push(kind, pos_, 1);
-                ++pos_;
+                std::size_t length = 1;
+                switch (kind) {
+                    case TokenKind::EqualEqual:
+                    case TokenKind::BangEqual:
+                    case TokenKind::LessEqual:
+                    case TokenKind::GreaterEqual:
+                    case TokenKind::AndAnd:
+                    case TokenKind::OrOr:
+                    case TokenKind::PlusEquals:
+                    case TokenKind::MinusEquals:
+                        length = 2;
+                        break;
+                    default:
+                        break;
+                }
+                push(kind, pos_, length);
+                pos_ += length;
             }
         }
     }
@@ -236,9 +307,12 @@ std::vector<Token> Lexer::tokenize() {
 void Lexer::lexUnexpected() {
     // A run of unexpected characters is one error, so binary-looking text stays readable.
     std::size_t start = pos_;
+    if (text_[pos_] == '&' || text_[pos_] == '|') {
+        ++pos_;  // a lone '&' or '|' (the operators are '&&' and '||')
+    }
     auto recognised = [](char ch) {
         return ch == '\n' || ch == ' ' || ch == '\t' || ch == '\r' || isIdentChar(ch) ||
-               std::string_view("{}[](),=:;+-*/#@\"").find(ch) != std::string_view::npos;
+               std::string_view("{}[](),=:;+-*/#@\"!<>?%.").find(ch) != std::string_view::npos;
     };
     while (pos_ < text_.size() && !recognised(text_[pos_])) {
         pos_ += std::min(utf8Length(static_cast<unsigned char>(text_[pos_])), text_.size() - pos_);
@@ -316,6 +390,99 @@ void Lexer::lexNumber() {
     addError(diagnostics_, "E0008", "unknown unit '" + unit + "'",
              locationAt(unitStart, pos_ - unitStart), "not a unit")
         .help.push_back("units are: m, km, cm, mm, deg, rad, %, px, s, min, h");
+}
+
+// Date-times (2024-06-21, 2024-06-21T14:30[:05][Z|+02:00]) and times (14:30[:05]). The
+// token text becomes the canonical form with seconds: 2024-06-21T14:30:00+02:00, 14:30:00.
+bool Lexer::lexDateTime() {
+    auto digitsAt = [&](std::size_t at, std::size_t count) {
+        if (at + count > text_.size()) {
+            return false;
+        }
+        for (std::size_t i = 0; i < count; ++i) {
+            if (!isDigit(text_[at + i])) {
+                return false;
+            }
+        }
+        return true;
+    };
+    auto valueAt = [&](std::size_t at, std::size_t count) {
+        int value = 0;
+        for (std::size_t i = 0; i < count; ++i) {
+            value = value * 10 + (text_[at + i] - '0');
+        }
+        return value;
+    };
+    auto charAt = [&](std::size_t at) { return at < text_.size() ? text_[at] : '\0'; };
+    std::size_t start = pos_;
+    std::size_t at = pos_;
+    std::string canonical;
+    bool valid = true;
+    // Parses HH:MM[:SS] at `at`; false if it is not there at all.
+    auto parseTime = [&](std::size_t hourDigits) {
+        int hour = valueAt(at, hourDigits);
+        int minute = valueAt(at + hourDigits + 1, 2);
+        at += hourDigits + 3;
+        int second = 0;
+        if (charAt(at) == ':' && digitsAt(at + 1, 2)) {
+            second = valueAt(at + 1, 2);
+            at += 3;
+        }
+        valid = valid && hour < 24 && minute < 60 && second < 60;
+        char buffer[16];
+        std::snprintf(buffer, sizeof buffer, "%02d:%02d:%02d", hour % 100, minute % 100,
+                      second % 100);
+        canonical += buffer;
+    };
+    if (digitsAt(at, 4) && charAt(at + 4) == '-' && digitsAt(at + 5, 2) && charAt(at + 7) == '-' &&
+        digitsAt(at + 8, 2)) {
+        int year = valueAt(at, 4);
+        int month = valueAt(at + 5, 2);
+        int day = valueAt(at + 8, 2);
+        static constexpr int kDays[] = {31, 29, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+        bool leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+        valid = month >= 1 && month <= 12 && day >= 1 && day <= kDays[month - 1] &&
+                (month != 2 || day <= 28 || leap);
+        canonical = std::string(text_.substr(at, 10));
+        at += 10;
+        if (charAt(at) == 'T' && digitsAt(at + 1, 2) && charAt(at + 3) == ':' &&
+            digitsAt(at + 4, 2)) {
+            ++at;
+            canonical += 'T';
+            parseTime(2);
+            if (charAt(at) == 'Z') {
+                canonical += "+00:00";
+                ++at;
+            } else if ((charAt(at) == '+' || charAt(at) == '-') && digitsAt(at + 1, 2) &&
+                       charAt(at + 3) == ':' && digitsAt(at + 4, 2)) {
+                valid = valid && valueAt(at + 1, 2) <= 14 && valueAt(at + 4, 2) < 60;
+                canonical += std::string(text_.substr(at, 6));
+                at += 6;
+            }
+        }
+    } else if (digitsAt(at, 2) && charAt(at + 2) == ':' && digitsAt(at + 3, 2)) {
+        parseTime(2);
+    } else if (digitsAt(at, 1) && charAt(at + 1) == ':' && digitsAt(at + 2, 2)) {
+        parseTime(1);
+    } else {
+        return false;
+    }
+    // A date-time glued to letters or digits is not one ("2024-06-21x").
+    while (at < text_.size() && isIdentChar(text_[at])) {
+        ++at;
+        valid = false;
+    }
+    pos_ = at;
+    push(TokenKind::DateTime, start, pos_ - start);
+    if (!valid) {
+        tokens_.back().malformed = true;
+        addError(diagnostics_, "E0009",
+                 "invalid date/time '" + std::string(text_.substr(start, pos_ - start)) + "'",
+                 locationAt(start, pos_ - start), "expected 2024-06-21T14:30+02:00 or 14:30");
+        return true;
+    }
+    tokens_.back().text = canonical;
+    return true;
 }
 
 void Lexer::lexColour() {

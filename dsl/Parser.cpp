@@ -121,7 +121,13 @@ FileNode Parser::parseFile() {
             discard = true;
         }
         const Token& first = peek();
-        if (first.is(TokenKind::Identifier) && first.text == "param") {
+        if (first.is(TokenKind::Identifier) && first.text == "import" &&
+            !peek(1).is(TokenKind::Equals)) {
+            ImportNode import;
+            if (parseImport(import) && expectStatementEnd(0) && !discard) {
+                file.statements.emplace_back(std::move(import));
+            }
+        } else if (first.is(TokenKind::Identifier) && first.text == "param") {
             ParamNode param;
             if (parseParam(param) && expectStatementEnd(0) && !discard) {
                 file.statements.emplace_back(std::move(param));
@@ -165,6 +171,30 @@ ExprPtr Parser::parseLoneExpression() {
         return nullptr;
     }
     return expr;
+}
+
+bool Parser::parseImport(ImportNode& import) {
+    advance();  // 'import'
+    if (!at(TokenKind::String)) {
+        error("E0101", "expected a file name after 'import', found " + describeToken(peek()),
+              peek().location, "write 'import \"file.sylva\" as name'");
+        synchronize(0);
+        return false;
+    }
+    import.path = peek().text;
+    import.pathLocation = advance().location;
+    if (at(TokenKind::Identifier) && peek().text == "as") {
+        advance();
+        if (!at(TokenKind::Identifier)) {
+            error("E0101", "expected a namespace after 'as', found " + describeToken(peek()),
+                  peek().location, "expected a name");
+            synchronize(0);
+            return false;
+        }
+        import.alias = peek().text;
+        import.aliasLocation = advance().location;
+    }
+    return true;
 }
 
 bool Parser::parseParam(ParamNode& param) {
@@ -220,17 +250,31 @@ bool Parser::parseBlock(BlockNode& block) {
         block.kind = peek().text;
         block.kindLocation = advance().location;
     }
+    if (at(TokenKind::Identifier) && peek().text == "extends") {
+        advance();
+        if (!at(TokenKind::Identifier) && !at(TokenKind::Reference)) {
+            error("E0101", "expected a name after 'extends', found " + describeToken(peek()),
+                  peek().location, "expected the name of the parent");
+            synchronize(0);
+            return false;
+        }
+        block.extends = peek().text;
+        if (at(TokenKind::Reference) && !peek().field.empty()) {
+            block.extends += "." + peek().field;
+        }
+        block.extendsLocation = advance().location;
+    }
     if (!at(TokenKind::LBrace)) {
         error("E0101", "expected '{' after '" + block.keyword + "', found " + describeToken(peek()),
               peek().location, "expected '{'");
         synchronize(0);
         return false;
     }
-    parseBody(block);
+    parseBody(block, true);
     return true;
 }
 
-void Parser::parseBody(BlockNode& block) {
+void Parser::parseBody(BlockNode& block, bool allowOverrides) {
     const Token opener = advance();
     open_.push_back(opener);
     const std::size_t base = open_.size();
@@ -257,10 +301,38 @@ void Parser::parseBody(BlockNode& block) {
             discard = true;
         }
         const Token& name = peek();
-        if (name.is(TokenKind::Identifier) && peek(1).is(TokenKind::Equals)) {
+        const TokenKind assign = peek(1).kind;
+        if (name.is(TokenKind::Identifier) && name.text == "override" &&
+            peek(1).is(TokenKind::Reference) && allowOverrides) {
+            OverrideNode override;
+            override.target = peek(1).text + (peek(1).field.empty() ? "" : "." + peek(1).field);
+            override.targetLocation = peek(1).location;
+            advance();
+            advance();
+            if (!at(TokenKind::LBrace)) {
+                error("E0101",
+                      "expected '{' after 'override @" + override.target + "', found " +
+                          describeToken(peek()),
+                      peek().location, "expected '{'");
+                synchronize(base);
+                continue;
+            }
+            BlockNode body;
+            parseBody(body, false);
+            override.attributes = std::move(body.attributes);
+            if (expectStatementEnd(base) && !discard) {
+                block.overrides.push_back(std::move(override));
+            }
+        } else if (name.is(TokenKind::Identifier) &&
+                   (assign == TokenKind::Equals || assign == TokenKind::PlusEquals ||
+                    assign == TokenKind::MinusEquals)) {
             AttributeNode attribute;
             attribute.name = name.text;
             attribute.nameLocation = name.location;
+            attribute.op = assign == TokenKind::Equals       ? AssignOp::Set
+                           : assign == TokenKind::PlusEquals ? AssignOp::Append
+                                                             : AssignOp::Remove;
+            attribute.opLocation = peek(1).location;
             advance();
             advance();
             attribute.value = parseExpression();
@@ -293,19 +365,93 @@ ExprPtr Parser::parseExpression(int minBindingPower) {
     }
     ++depth_;
     ExprPtr left = parsePrefix();
+    if (left) {
+        left = parsePostfix(std::move(left));
+    }
     while (left) {
         TokenKind kind = peek().kind;
         int power = 0;
-        if (kind == TokenKind::Plus || kind == TokenKind::Minus) {
-            power = 10;
-        } else if (kind == TokenKind::Star || kind == TokenKind::Slash) {
-            power = 20;
+        char op = 0;
+        switch (kind) {
+            case TokenKind::Question:
+                power = 1;
+                break;
+            case TokenKind::OrOr:
+                power = 2, op = '|';
+                break;
+            case TokenKind::AndAnd:
+                power = 3, op = '&';
+                break;
+            case TokenKind::EqualEqual:
+                power = 4, op = 'e';
+                break;
+            case TokenKind::BangEqual:
+                power = 4, op = 'n';
+                break;
+            case TokenKind::Less:
+                power = 5, op = '<';
+                break;
+            case TokenKind::LessEqual:
+                power = 5, op = 'l';
+                break;
+            case TokenKind::Greater:
+                power = 5, op = '>';
+                break;
+            case TokenKind::GreaterEqual:
+                power = 5, op = 'g';
+                break;
+            case TokenKind::Plus:
+                power = 10, op = '+';
+                break;
+            case TokenKind::Minus:
+                power = 10, op = '-';
+                break;
+            case TokenKind::Star:
+                power = 20, op = '*';
+                break;
+            case TokenKind::Slash:
+                power = 20, op = '/';
+                break;
+            case TokenKind::Percent:
+                power = 20, op = '%';
+                break;
+            default:
+                break;
         }
         if (power == 0 || power <= minBindingPower) {
             break;
         }
-        char op = peek().text.empty() ? '?' : peek().text[0];
         advance();
+        if (kind == TokenKind::Question) {
+            // `c ? a : b`, right-associative: `a ? b : c ? d : e` nests in the else branch.
+            skipNewlines();
+            ExprPtr then = parseExpression(0);
+            if (!then) {
+                left = nullptr;
+                break;
+            }
+            skipNewlines();
+            if (!at(TokenKind::Colon)) {
+                error("E0101", "expected ':' in conditional, found " + describeToken(peek()),
+                      peek().location, "write 'condition ? then : else'");
+                left = nullptr;
+                break;
+            }
+            advance();
+            skipNewlines();
+            ExprPtr otherwise = parseExpression(0);
+            if (!otherwise) {
+                left = nullptr;
+                break;
+            }
+            auto conditional = makeExpr(Expr::Kind::Conditional,
+                                        spanLocations(left->location, otherwise->location));
+            conditional->children.push_back(std::move(left));
+            conditional->children.push_back(std::move(then));
+            conditional->children.push_back(std::move(otherwise));
+            left = std::move(conditional);
+            continue;
+        }
         ExprPtr right = parseExpression(power);
         if (!right) {
             left = nullptr;
@@ -338,6 +484,12 @@ ExprPtr Parser::parsePrefix() {
         }
         case TokenKind::String: {
             auto expr = makeExpr(Expr::Kind::String, token.location);
+            expr->text = token.text;
+            advance();
+            return expr;
+        }
+        case TokenKind::DateTime: {
+            auto expr = makeExpr(Expr::Kind::DateTime, token.location);
             expr->text = token.text;
             advance();
             return expr;
@@ -389,6 +541,7 @@ ExprPtr Parser::parsePrefix() {
             return inner;
         }
         case TokenKind::Minus:
+        case TokenKind::Bang:
         case TokenKind::Plus: {
             const Token sign = advance();
             ExprPtr operand = parseExpression(30);
@@ -449,6 +602,11 @@ ExprPtr Parser::parseList() {
         if (!element) {
             return nullptr;
         }
+        if (list->children.size() >= kMaxListLength) {
+            error("E0105", "list too long", element->location,
+                  "lists are limited to " + std::to_string(kMaxListLength) + " elements");
+            return nullptr;
+        }
         list->children.push_back(std::move(element));
         skipNewlines();
         if (!at(TokenKind::Comma)) {
@@ -496,6 +654,43 @@ ExprPtr Parser::parseObject() {
         }
     }
     return closeDelimiter(TokenKind::RBrace, opener, *object) ? std::move(object) : nullptr;
+}
+
+// `value[index]` and `value.field` after any primary (references carry their fields
+// already: `@beach.position`).
+ExprPtr Parser::parsePostfix(ExprPtr left) {
+    while (left) {
+        if (at(TokenKind::LBracket) && !peek().spaceBefore) {
+            const Token opener = advance();
+            open_.push_back(opener);
+            ExprPtr index = parseExpression();
+            if (!index) {
+                return nullptr;
+            }
+            auto node = makeExpr(Expr::Kind::Index, left->location);
+            node->children.push_back(std::move(left));
+            node->children.push_back(std::move(index));
+            if (!at(TokenKind::RBracket)) {
+                Expr& ref = *node;
+                closeDelimiter(TokenKind::RBracket, opener, ref);
+                return nullptr;
+            }
+            node->location = spanLocations(node->location, peek().location);
+            advance();
+            open_.pop_back();
+            left = std::move(node);
+        } else if (at(TokenKind::Dot) && peek(1).is(TokenKind::Identifier)) {
+            advance();
+            const Token& field = advance();
+            auto node = makeExpr(Expr::Kind::Field, spanLocations(left->location, field.location));
+            node->text = field.text;
+            node->children.push_back(std::move(left));
+            left = std::move(node);
+        } else {
+            break;
+        }
+    }
+    return left;
 }
 
 ExprPtr Parser::parseCall() {

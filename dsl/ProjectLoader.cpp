@@ -71,6 +71,165 @@ LoadResult fileError(std::string code, std::string message) {
     return result;
 }
 
+std::string invalidUtf8Message(const std::string& text, std::size_t invalid) {
+    std::size_t lineStart = text.rfind('\n', invalid == 0 ? 0 : invalid - 1);
+    lineStart = (lineStart == std::string::npos || invalid == 0) ? 0 : lineStart + 1;
+    std::size_t line =
+        1 + static_cast<std::size_t>(std::count(
+                text.begin(), text.begin() + static_cast<std::ptrdiff_t>(invalid), '\n'));
+    char byte[8];
+    std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(text[invalid]));
+    return std::string("not valid UTF-8 (byte ") + byte + " at line " + std::to_string(line) +
+           ", column " + std::to_string(invalid - lineStart + 1) + ")";
+}
+
+// Follows imports depth-first and collects every parsed file as a unit with its scope.
+class ImportWalker {
+public:
+    ImportWalker(const LoadOptions& options, SourceFiles& sources,
+                 std::vector<Diagnostic>& diagnostics)
+        : options_(options), sources_(sources), diagnostics_(diagnostics) {}
+
+    void parse(std::string text, const std::string& displayName, const std::filesystem::path& path,
+               const std::string& scope) {
+        totalBytes_ += text.size();
+        std::shared_ptr<const std::string> file = sources_.add(displayName, std::move(text));
+        std::vector<Token> tokens = Lexer(sources_.text(file), file, diagnostics_).tokenize();
+        asts_.push_back(
+            std::make_unique<FileNode>(Parser(std::move(tokens), diagnostics_).parseFile()));
+        const FileNode& ast = *asts_.back();
+        units_.push_back({&ast, scope});
+        files_.push_back(path);
+        stack_.push_back({key(path), displayName});
+        for (const Statement& statement : ast.statements) {
+            if (const auto* import = std::get_if<ImportNode>(&statement)) {
+                follow(*import, path, displayName, scope);
+            }
+        }
+        stack_.pop_back();
+    }
+
+    std::vector<ParsedUnit> units() const { return units_; }
+    std::vector<std::filesystem::path> files() const { return files_; }
+
+private:
+    static std::string key(const std::filesystem::path& path) {
+        std::error_code error;
+        std::filesystem::path canonical = std::filesystem::weakly_canonical(path, error);
+        return (error ? path.lexically_normal() : canonical).string();
+    }
+
+    void follow(const ImportNode& import, const std::filesystem::path& importer,
+                const std::string& importerDisplay, const std::string& scope) {
+        const std::filesystem::path path = importer.parent_path() / import.path;
+        const std::string display =
+            (std::filesystem::path(importerDisplay).parent_path() / import.path)
+                .lexically_normal()
+                .string();
+        const std::string what = "cannot import '" + import.path + "'";
+        const std::string childKey = key(path);
+        for (std::size_t i = 0; i < stack_.size(); ++i) {
+            if (stack_[i].first != childKey) {
+                continue;
+            }
+            std::string chain;
+            for (std::size_t k = i; k < stack_.size(); ++k) {
+                chain += std::filesystem::path(stack_[k].second).filename().string() + " -> ";
+            }
+            chain += std::filesystem::path(display).filename().string();
+            std::string label = "'";
+            label += std::filesystem::path(importerDisplay).filename().string();
+            label += "' imports '";
+            label += import.path;
+            label += "' here, which is already being imported";
+            addError(diagnostics_, "E0011", "import cycle", import.pathLocation, label).cycle =
+                chain;
+            return;
+        }
+        if (++imports_ > options_.maxImports) {
+            if (imports_ == options_.maxImports + 1) {
+                addError(diagnostics_, "E0012", "too many imports", import.pathLocation,
+                         "a project may import at most " + std::to_string(options_.maxImports) +
+                             " files");
+            }
+            return;
+        }
+        std::error_code error;
+        std::filesystem::file_status status = std::filesystem::status(path, error);
+        if (error || !std::filesystem::exists(status)) {
+            addError(diagnostics_, "E0001", what + ": no such file", import.pathLocation,
+                     "looked for '" + display + "'")
+                .help.push_back("import paths are relative to the file that writes them");
+            return;
+        }
+        if (std::filesystem::is_directory(status)) {
+            addError(diagnostics_, "E0001", what + ": it is a directory", import.pathLocation,
+                     "'" + display + "' is a directory");
+            return;
+        }
+        if (!std::filesystem::is_regular_file(status)) {
+            // Devices and pipes could block or never end (/dev/zero).
+            addError(diagnostics_, "E0001", what + ": not a regular file", import.pathLocation,
+                     "'" + display + "' is a device, pipe or socket");
+            return;
+        }
+        std::uintmax_t size = std::filesystem::file_size(path, error);
+        if (!error && (size > kMaxProjectFileBytes || totalBytes_ + size > kMaxProjectBytes)) {
+            addError(diagnostics_, "E0002", what + ": file too large", import.pathLocation,
+                     std::to_string(size) +
+                         " bytes; files are limited to 16 MiB and a project "
+                         "to 64 MiB");
+            return;
+        }
+        std::ifstream stream(path, std::ios::binary);
+        std::string text((std::istreambuf_iterator<char>(stream)),
+                         std::istreambuf_iterator<char>());
+        if (!stream.good() && !stream.eof()) {
+            addError(diagnostics_, "E0001", what + ": read error", import.pathLocation,
+                     "could not read '" + display + "'");
+            return;
+        }
+        std::size_t invalid = findInvalidUtf8(text);
+        if (invalid != text.size()) {
+            addError(diagnostics_, "E0003", what + ": " + invalidUtf8Message(text, invalid),
+                     import.pathLocation, "'" + display + "' is not UTF-8 text");
+            return;
+        }
+        parse(std::move(text), display, path,
+              import.alias.empty() ? scope : scope + import.alias + ".");
+    }
+
+    const LoadOptions& options_;
+    SourceFiles& sources_;
+    std::vector<Diagnostic>& diagnostics_;
+    std::vector<std::unique_ptr<FileNode>> asts_;
+    std::vector<ParsedUnit> units_;
+    std::vector<std::filesystem::path> files_;
+    std::vector<std::pair<std::string, std::string>> stack_;  // key, display name
+    std::size_t imports_ = 0;
+    std::size_t totalBytes_ = 0;
+
+public:
+    // The parsed files must outlive the resolved model's construction.
+    std::vector<std::unique_ptr<FileNode>>& asts() { return asts_; }
+};
+
+// Parses `name=value` given on the command line as its own one-line "file", so its
+// errors get carets too. Returns the value expression (null after a syntax error).
+ExprPtr parseCommandLineValue(SourceFiles& sources, std::vector<Diagnostic>& diagnostics,
+                              const std::string& prefix, const std::string& name,
+                              const std::string& value, SourceLocation& nameLocation) {
+    std::string line = prefix + name + "=" + value;
+    std::shared_ptr<const std::string> file = sources.add("<command line>", line);
+    nameLocation.file = file;
+    nameLocation.line = 1;
+    nameLocation.column = static_cast<std::uint32_t>(prefix.size() + 1);
+    nameLocation.length = static_cast<std::uint32_t>(name.size());
+    std::vector<Token> tokens =
+        Lexer(sources.text(file), file, diagnostics, prefix.size() + name.size() + 1).tokenize();
+    return Parser(std::move(tokens), diagnostics).parseLoneExpression();
+}
+
 LoadResult loadText(std::string text, const std::string& displayName,
                     const std::filesystem::path& path, const LoadOptions& options) {
     if (text.size() > kMaxProjectFileBytes) {
@@ -80,45 +239,53 @@ LoadResult loadText(std::string text, const std::string& displayName,
     }
     std::size_t invalid = findInvalidUtf8(text);
     if (invalid != text.size()) {
-        std::size_t lineStart = text.rfind('\n', invalid == 0 ? 0 : invalid - 1);
-        lineStart = (lineStart == std::string::npos || invalid == 0) ? 0 : lineStart + 1;
-        std::size_t line =
-            1 + static_cast<std::size_t>(std::count(
-                    text.begin(), text.begin() + static_cast<std::ptrdiff_t>(invalid), '\n'));
-        char byte[8];
-        std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(text[invalid]));
-        return fileError("E0003", "cannot read '" + displayName + "': not valid UTF-8 (byte " +
-                                      byte + " at line " + std::to_string(line) + ", column " +
-                                      std::to_string(invalid - lineStart + 1) + ")");
+        return fileError("E0003",
+                         "cannot read '" + displayName + "': " + invalidUtf8Message(text, invalid));
     }
 
     auto sources = std::make_shared<SourceFiles>();
     LoadResult result;
-    std::shared_ptr<const std::string> file = sources->add(displayName, std::move(text));
-    std::vector<Token> tokens = Lexer(sources->text(file), file, result.diagnostics).tokenize();
-    FileNode ast = Parser(std::move(tokens), result.diagnostics).parseFile();
+    ImportWalker walker(options, *sources, result.diagnostics);
+    walker.parse(std::move(text), displayName, path, "");
 
     std::vector<DefineNode> defines;
     for (const auto& [name, value] : options.defines) {
-        // Each -D is shown as its own one-line "file", so its errors get carets too.
-        std::string line = "-D " + name + "=" + value;
-        std::shared_ptr<const std::string> defineFile = sources->add("<command line>", line);
         DefineNode define;
         define.name = name;
-        define.nameLocation.file = defineFile;
-        define.nameLocation.line = 1;
-        define.nameLocation.column = 4;
-        define.nameLocation.length = static_cast<std::uint32_t>(name.size());
-        std::vector<Token> valueTokens =
-            Lexer(sources->text(defineFile), defineFile, result.diagnostics, 4 + name.size())
-                .tokenize();
-        define.value = Parser(std::move(valueTokens), result.diagnostics).parseLoneExpression();
+        define.value = parseCommandLineValue(*sources, result.diagnostics, "-D ", name, value,
+                                             define.nameLocation);
         defines.push_back(std::move(define));
+    }
+    std::vector<SetNode> sets;
+    for (const auto& [target, value] : options.sets) {
+        SetNode set;
+        std::size_t dot = target.rfind('.');
+        set.block = dot == std::string::npos ? std::string() : target.substr(0, dot);
+        set.attribute.name = dot == std::string::npos ? target : target.substr(dot + 1);
+        set.attribute.value = parseCommandLineValue(*sources, result.diagnostics, "--set ", target,
+                                                    value, set.attribute.nameLocation);
+        if (dot == std::string::npos || set.block.empty() || set.attribute.name.empty()) {
+            addError(result.diagnostics, "E0213",
+                     "--set needs BLOCK.ATTRIBUTE, found '" + target + "'",
+                     set.attribute.nameLocation, "expected e.g. render.exposure");
+            continue;
+        }
+        // The attribute name is the last part of the path.
+        set.blockLocation = set.attribute.nameLocation;
+        set.blockLocation.length = static_cast<std::uint32_t>(dot);
+        set.attribute.nameLocation.column += static_cast<std::uint32_t>(dot + 1);
+        set.attribute.nameLocation.length = static_cast<std::uint32_t>(target.size() - dot - 1);
+        if (set.attribute.value) {
+            sets.push_back(std::move(set));
+        }
     }
 
     // Resolve even after syntax errors, so one run shows every problem.
-    std::optional<ProjectModel> model =
-        Resolver(*options.schema, result.diagnostics).resolve(ast, defines, path);
+    ResolveOptions resolveOptions;
+    resolveOptions.lenient = options.lenient;
+    std::vector<ProjectModel> models =
+        Resolver(*options.schema, result.diagnostics)
+            .resolve(walker.units(), defines, sets, path, resolveOptions);
     std::stable_sort(result.diagnostics.begin(), result.diagnostics.end(),
                      [&](const Diagnostic& a, const Diagnostic& b) {
                          auto key = [&](const Diagnostic& d) {
@@ -128,9 +295,27 @@ LoadResult loadText(std::string text, const std::string& displayName,
                          };
                          return key(a) < key(b);
                      });
-    if (!hasErrors(result.diagnostics)) {
-        result.model = std::move(model);
+    // A problem inside a block shared by several scenarios is reported once.
+    std::vector<Diagnostic> unique;
+    for (Diagnostic& diagnostic : result.diagnostics) {
+        bool seen = std::any_of(unique.begin(), unique.end(), [&](const Diagnostic& other) {
+            return other.code == diagnostic.code && other.message == diagnostic.message &&
+                   other.location.file == diagnostic.location.file &&
+                   other.location.line == diagnostic.location.line &&
+                   other.location.column == diagnostic.location.column;
+        });
+        if (!seen) {
+            unique.push_back(std::move(diagnostic));
+        }
     }
+    result.diagnostics = std::move(unique);
+    if (!hasErrors(result.diagnostics) && !models.empty()) {
+        result.model = models.front();
+        if (!models.front().scenario.empty()) {
+            result.scenarios = std::move(models);
+        }
+    }
+    result.files = walker.files();
     result.sources = std::move(sources);
     return result;
 }
@@ -139,6 +324,18 @@ LoadResult loadText(std::string text, const std::string& displayName,
 
 bool LoadResult::hasErrors() const {
     return dsl::hasErrors(diagnostics);
+}
+
+const ProjectModel* LoadResult::modelFor(std::string_view name) const {
+    for (const ProjectModel& scenario : scenarios) {
+        if (scenario.scenario == name) {
+            return &scenario;
+        }
+    }
+    if (model && model->scenario == name) {
+        return &*model;
+    }
+    return nullptr;
 }
 
 std::string LoadResult::render(bool colour) const {
@@ -155,6 +352,9 @@ LoadResult loadProject(const std::filesystem::path& file, const LoadOptions& opt
     }
     if (std::filesystem::is_directory(status)) {
         return fileError("E0001", "cannot read '" + display + "': it is a directory");
+    }
+    if (!std::filesystem::is_regular_file(status)) {
+        return fileError("E0001", "cannot read '" + display + "': not a regular file");
     }
     std::uintmax_t size = std::filesystem::file_size(file, error);
     if (!error && size > kMaxProjectFileBytes) {

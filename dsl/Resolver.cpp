@@ -1,6 +1,7 @@
 #include "sylva/dsl/Resolver.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <numbers>
@@ -8,6 +9,7 @@
 #include <utility>
 
 #include "sylva/dsl/EditDistance.h"
+#include "sylva/dsl/ModelHash.h"
 
 namespace sylva::dsl {
 
@@ -68,6 +70,8 @@ std::string expectedName(const AttributeSchema& schema) {
             return "list";
         case ValueType::Object:
             return "object";
+        case ValueType::DateTime:
+            return "date/time";
     }
     return "value";
 }
@@ -127,6 +131,64 @@ bool isAnonymousKeyword(const std::string& keyword) {
     return keyword == "project" || keyword == "render";
 }
 
+// The forms the lexer produces: 2024-06-21, 2024-06-21T14:30:00[+02:00], 14:30:00.
+bool isCanonicalDateTime(const std::string& text) {
+    auto shape = [&](const char* pattern) {
+        std::string_view p(pattern);
+        if (text.size() != p.size()) {
+            return false;
+        }
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            bool digit = text[i] >= '0' && text[i] <= '9';
+            if (p[i] == 'd' ? !digit
+                            : (p[i] == 's' ? text[i] != '+' && text[i] != '-' : text[i] != p[i])) {
+                return false;
+            }
+        }
+        return true;
+    };
+    return shape("dddd-dd-dd") || shape("dddd-dd-ddTdd:dd:dd") ||
+           shape("dddd-dd-ddTdd:dd:ddsdd:dd") || shape("dd:dd:dd");
+}
+
+std::vector<std::string> splitDots(const std::string& text) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    while (true) {
+        std::size_t dot = text.find('.', start);
+        parts.push_back(text.substr(start, dot == std::string::npos ? dot : dot - start));
+        if (dot == std::string::npos) {
+            return parts;
+        }
+        start = dot + 1;
+    }
+}
+
+const char* operatorText(char op) {
+    switch (op) {
+        case 'l':
+            return "<=";
+        case 'g':
+            return ">=";
+        case 'e':
+            return "==";
+        case 'n':
+            return "!=";
+        case '&':
+            return "&&";
+        case '|':
+            return "||";
+        case '<':
+            return "<";
+        case '>':
+            return ">";
+        case '%':
+            return "%";
+        default:
+            return "?";
+    }
+}
+
 }  // namespace
 
 std::string formatQuantity(const Quantity& quantity) {
@@ -153,36 +215,113 @@ Resolver::Resolver(const SchemaRegistry& schema, std::vector<Diagnostic>& diagno
 std::optional<ProjectModel> Resolver::resolve(const FileNode& file,
                                               const std::vector<DefineNode>& defines,
                                               const std::filesystem::path& path) {
-    declarations_.reserve(file.statements.size());
-    for (const Statement& statement : file.statements) {
-        declare(statement);
+    std::vector<ProjectModel> models = resolve({ParsedUnit{&file, ""}}, defines, {}, path);
+    if (models.empty()) {
+        return std::nullopt;
+    }
+    return std::move(models.front());
+}
+
+std::vector<ProjectModel> Resolver::resolve(const std::vector<ParsedUnit>& units,
+                                            const std::vector<DefineNode>& defines,
+                                            const std::vector<SetNode>& sets,
+                                            const std::filesystem::path& path,
+                                            const ResolveOptions& options) {
+    options_ = options;
+    rootDirectory_ = path.parent_path();
+    std::size_t statements = 0;
+    for (const ParsedUnit& unit : units) {
+        statements += unit.file->statements.size();
+    }
+    declarations_.reserve(statements);
+    for (const ParsedUnit& unit : units) {
+        for (const Statement& statement : unit.file->statements) {
+            declare(statement, unit.scope);
+        }
     }
     applyDefines(defines);
+    for (const SetNode& set : sets) {
+        auto found = names_.find(set.block);
+        bool known = set.block == "project" || set.block == "render" ||
+                     (found != names_.end() && declarations_[found->second].block);
+        if (!known) {
+            std::vector<std::string> blocks = {"project", "render"};
+            for (const Declaration& declaration : declarations_) {
+                if (declaration.block) {
+                    blocks.push_back(declaration.name);
+                }
+            }
+            Diagnostic& diagnostic =
+                addError(diagnostics_, "E0213", "unknown block '" + set.block + "' in --set",
+                         set.blockLocation, "no block named '" + set.block + "'");
+            if (auto match = closestMatch(set.block, blocks)) {
+                diagnostic.help.push_back("did you mean '" + *match + "'?");
+            }
+            diagnostic.help.push_back(
+                "write --set BLOCK.ATTRIBUTE=VALUE, e.g. --set render.exposure=2");
+            continue;
+        }
+        setPatches_[set.block].push_back({&set.attribute, ""});
+    }
     for (Declaration& declaration : declarations_) {
         if (declaration.keyword == "param") {
             evaluateParam(declaration, declaration.location);
         }
     }
+    // --set on a project/render block the files omit still has to be checked.
+    for (const char* keyword : {"project", "render"}) {
+        const BlockNode* written = std::string_view(keyword) == "project" ? project_ : render_;
+        const KindSchema* kindSchema = schema_.find(keyword);
+        if (!written && kindSchema && setPatches_.count(keyword)) {
+            auto node = std::make_unique<BlockNode>();
+            node->keyword = keyword;
+            node->keywordLocation = setPatches_[keyword].front().attribute->nameLocation;
+            blocks_.push_back({node.get(), kindSchema, ""});
+            implicit_.push_back(std::move(node));
+        }
+    }
 
     ProjectModel model;
     model.file = path;
-    for (const auto& [node, kindSchema] : blocks_) {
-        std::optional<Block> block = checkBlock(*node, *kindSchema);
+    for (const BlockEntry& entry : blocks_) {
+        if (entry.node->keyword == "scenario") {
+            continue;  // after all other blocks: scenarios inherit from each other
+        }
+        const std::string& key =
+            entry.node->name.empty() ? entry.node->keyword : entry.scope + entry.node->name;
+        auto patches = setPatches_.find(key);
+        std::optional<Block> block = checkBlock(
+            entry, patches == setPatches_.end() ? std::vector<Patch>{} : patches->second);
         if (!block) {
             continue;
         }
-        if (block->keyword == "source") {
+        const std::string& keyword = block->keyword;
+        if (keyword == "source") {
             model.sources.push_back(std::move(*block));
-        } else if (block->keyword == "camera") {
+        } else if (keyword == "camera") {
             model.cameras.push_back(std::move(*block));
-        } else if (block->keyword == "scenario") {
-            model.scenarios.push_back(std::move(*block));
-        } else if (block->keyword == "views") {
+        } else if (keyword == "views") {
             model.views.push_back(std::move(*block));
-        } else if (block->keyword == "project") {
+        } else if (keyword == "compare") {
+            model.compares.push_back(std::move(*block));
+        } else if (keyword == "blend") {
+            model.blends.push_back(std::move(*block));
+        } else if (keyword == "path") {
+            model.paths.push_back(std::move(*block));
+        } else if (keyword == "project") {
             model.project = std::move(*block);
-        } else if (block->keyword == "render") {
+        } else if (keyword == "render") {
             model.render = std::move(*block);
+        }
+    }
+    std::vector<Declaration*> scenarios;
+    for (Declaration& declaration : declarations_) {
+        if (declaration.keyword == "scenario" && declaration.schema) {
+            resolveScenario(declaration);
+            if (declaration.scenarioBlock) {
+                model.scenarios.push_back(*declaration.scenarioBlock);
+                scenarios.push_back(&declaration);
+            }
         }
     }
     // project and render exist even when the file omits them.
@@ -195,7 +334,6 @@ std::optional<ProjectModel> Resolver::resolve(const FileNode& file,
             }
         }
     }
-    findCycles(model.sources);
 
     for (const Declaration& declaration : declarations_) {
         if (declaration.keyword != "param") {
@@ -221,13 +359,192 @@ std::optional<ProjectModel> Resolver::resolve(const FileNode& file,
         }
         model.params.push_back(std::move(param));
     }
-    if (!model.scenarios.empty()) {
-        model.scenario = model.scenarios.front().name;
+
+    std::vector<ProjectModel> models;
+    computeContentHashes(model);
+    if (scenarios.empty()) {
+        findCycles(model.sources);
+        models.push_back(std::move(model));
+    }
+    for (Declaration* scenario : scenarios) {
+        ProjectModel scenarioModel = model;
+        scenarioModel.scenario = scenario->name;
+        // The overrides of this scenario (inherited ones first), by target block.
+        std::map<std::string, std::vector<Patch>> overrides;
+        for (std::size_t i = 0; i < scenario->overrideAttributes.size(); ++i) {
+            const auto& [target, attribute] = scenario->overrideAttributes[i];
+            overrides[target].push_back({attribute, scenario->overrideScopes[i]});
+        }
+        for (const auto& entryPair : overrides) {
+            const std::string& target = entryPair.first;
+            const std::vector<Patch>& patches = entryPair.second;
+            const Declaration& declaration = declarations_[names_.find(target)->second];
+            std::vector<Block>& blocks =
+                declaration.keyword == "source" ? scenarioModel.sources : scenarioModel.cameras;
+            auto found = std::find_if(blocks.begin(), blocks.end(),
+                                      [&](const Block& block) { return block.name == target; });
+            if (found == blocks.end()) {
+                continue;  // the block itself has errors, already reported
+            }
+            std::vector<Patch> all;
+            if (auto setFound = setPatches_.find(target); setFound != setPatches_.end()) {
+                all = setFound->second;
+            }
+            all.insert(all.end(), patches.begin(), patches.end());
+            BlockEntry entry{declaration.block, declaration.schema, declaration.scope};
+            if (std::optional<Block> block = checkBlock(entry, all)) {
+                *found = std::move(*block);
+            }
+        }
+        // Without overrides the graph is the base graph, checked once.
+        if (!overrides.empty() || scenario == scenarios.front()) {
+            findCycles(scenarioModel.sources);
+        }
+        std::vector<std::string> changed;
+        for (const auto& entryPair : overrides) {
+            changed.push_back(entryPair.first);
+        }
+        computeContentHashes(scenarioModel, &changed);
+        models.push_back(std::move(scenarioModel));
     }
     if (hasErrors(diagnostics_)) {
-        return std::nullopt;
+        return {};
     }
-    return model;
+    return models;
+}
+
+void Resolver::resolveScenario(Declaration& scenario) {
+    if (scenario.scenarioState == 2) {
+        return;
+    }
+    scenario.scenarioState = 1;
+    const BlockNode& node = *scenario.block;
+    const Block* inherited = nullptr;
+    if (!node.extends.empty()) {
+        std::vector<std::string> fields;
+        Declaration* parent = lookup(scenario.scope, node.extends, &fields);
+        if (!parent || !fields.empty()) {
+            Diagnostic& diagnostic =
+                addError(diagnostics_, "E0201", "unknown scenario '" + node.extends + "'",
+                         node.extendsLocation, "no scenario named '" + node.extends + "'");
+            std::vector<std::string> candidates;
+            for (const Declaration& declaration : declarations_) {
+                if (declaration.keyword == "scenario") {
+                    candidates.push_back(declaration.name);
+                }
+            }
+            if (auto match = closestMatch(node.extends, candidates)) {
+                diagnostic.help.push_back("did you mean '" + *match + "'?");
+            }
+        } else if (parent->keyword != "scenario") {
+            addError(diagnostics_, "E0406", "expected scenario, found " + parent->keyword,
+                     node.extendsLocation,
+                     "'" + parent->name + "' is " + withArticle(parent->keyword));
+        } else if (parent->scenarioState == 1) {
+            bool self = parent == &scenario;
+            addError(diagnostics_, "E0303",
+                     self ? "scenario '" + scenario.name + "' extends itself"
+                          : "scenarios '" + scenario.name + "' and '" + parent->name +
+                                "' extend each other",
+                     node.extendsLocation,
+                     "'" + scenario.name + "' extends '" + parent->name + "' here")
+                .help.push_back(
+                    "a scenario cannot inherit from itself, directly or through others");
+        } else {
+            resolveScenario(*parent);
+            if (parent->scenarioBlock) {
+                inherited = &*parent->scenarioBlock;
+                scenario.overrideAttributes = parent->overrideAttributes;
+                scenario.overrideScopes = parent->overrideScopes;
+            } else {
+                scenario.scenarioState = 2;
+                return;  // the parent has errors; do not pile more on
+            }
+        }
+    }
+    BlockEntry entry{scenario.block, scenario.schema, scenario.scope};
+    auto patches = setPatches_.find(scenario.name);
+    scenario.scenarioBlock = checkBlock(
+        entry, patches == setPatches_.end() ? std::vector<Patch>{} : patches->second, inherited);
+    for (const OverrideNode& override : node.overrides) {
+        std::vector<std::string> fields;
+        Declaration* target = lookup(scenario.scope, override.target, &fields);
+        if (!target || !fields.empty()) {
+            Diagnostic& diagnostic =
+                addError(diagnostics_, "E0201", "unknown reference '@" + override.target + "'",
+                         override.targetLocation, "no source named '" + override.target + "'");
+            std::vector<std::string> candidates;
+            for (const Declaration& declaration : declarations_) {
+                if (declaration.keyword == "source" || declaration.keyword == "camera") {
+                    candidates.push_back(declaration.name);
+                }
+            }
+            if (auto match = closestMatch(override.target, candidates)) {
+                diagnostic.help.push_back("did you mean '@" + *match + "' (defined at " +
+                                          shortLocation(declarations_[names_[*match]].location) +
+                                          ")?");
+            }
+            continue;
+        }
+        if (target->keyword != "source" && target->keyword != "camera") {
+            addError(diagnostics_, "E0406", "expected source or camera, found " + target->keyword,
+                     override.targetLocation, "only sources and cameras can be overridden");
+            continue;
+        }
+        for (const AttributeNode& attribute : override.attributes) {
+            scenario.overrideAttributes.emplace_back(target->name, &attribute);
+            scenario.overrideScopes.push_back(scenario.scope);
+        }
+    }
+    scenario.scenarioState = 2;
+}
+
+// Data paths resolve against the file that wrote them. The model holds them relative to
+// the project file, so a `file = "dem.tif"` in lib/terrain.sylva becomes "lib/dem.tif".
+void Resolver::rebasePath(const AttributeNode& attribute, Value& value) const {
+    static const std::vector<std::string> kPathAttributes = {"file", "models"};
+    std::string* text = std::get_if<std::string>(&value.data);
+    const auto& writer = attribute.nameLocation.file;
+    if (!text || text->empty() || !writer || *writer == "<command line>" ||
+        std::find(kPathAttributes.begin(), kPathAttributes.end(), attribute.name) ==
+            kPathAttributes.end()) {
+        return;
+    }
+    const std::filesystem::path written(*text);
+    const std::filesystem::path writerDirectory = std::filesystem::path(*writer).parent_path();
+    if (written.is_absolute() || text->find("://") != std::string::npos ||
+        writerDirectory == rootDirectory_) {
+        return;
+    }
+    std::filesystem::path relative = writerDirectory.lexically_relative(rootDirectory_);
+    if (relative.empty()) {
+        return;
+    }
+    std::string rebased = (relative / written).lexically_normal().generic_string();
+    // Keep a trailing separator (a folder such as models = "plants/").
+    if (text->back() == '/' && (rebased.empty() || rebased.back() != '/')) {
+        rebased += '/';
+    }
+    *text = rebased;
+}
+
+Resolver::Declaration* Resolver::lookup(const std::string& scope, const std::string& written,
+                                        std::vector<std::string>* fields) {
+    std::vector<std::string> parts = splitDots(written);
+    for (std::size_t n = parts.size(); n >= 1; --n) {
+        std::string candidate = scope;
+        for (std::size_t i = 0; i < n; ++i) {
+            candidate += (i > 0 ? "." : "") + parts[i];
+        }
+        auto found = names_.find(candidate);
+        if (found != names_.end()) {
+            if (fields) {
+                fields->assign(parts.begin() + static_cast<std::ptrdiff_t>(n), parts.end());
+            }
+            return &declarations_[found->second];
+        }
+    }
+    return nullptr;
 }
 
 bool Resolver::addName(Declaration declaration) {
@@ -244,11 +561,16 @@ bool Resolver::addName(Declaration declaration) {
     return true;
 }
 
-void Resolver::declare(const Statement& statement) {
+void Resolver::declare(const Statement& statement, const std::string& scope) {
+    if (std::holds_alternative<ImportNode>(statement)) {
+        return;  // the loader follows imports; their files arrive as units of their own
+    }
     if (const auto* param = std::get_if<ParamNode>(&statement)) {
         Declaration declaration;
         declaration.keyword = "param";
-        declaration.name = param->name;
+        declaration.name = scope + param->name;
+        declaration.scope = scope;
+        declaration.valueScope = scope;
         declaration.location = param->nameLocation;
         declaration.param = param;
         declaration.valueExpr = param->defaultValue.get();
@@ -273,6 +595,15 @@ void Resolver::declare(const Statement& statement) {
         return;
     }
     const std::string& keyword = block.keyword;
+    if (!block.extends.empty() && keyword != "scenario") {
+        addError(diagnostics_, "E0214", "'" + keyword + "' blocks cannot extend others",
+                 block.extendsLocation, "only scenarios use 'extends'");
+    }
+    if (!block.overrides.empty() && keyword != "scenario") {
+        addError(diagnostics_, "E0214", "'override' outside of a scenario",
+                 block.overrides.front().targetLocation, "only scenarios override blocks")
+            .help.push_back("write the attribute directly, or move the override into a scenario");
+    }
     const KindSchema* kindSchema = nullptr;
     if (keyword == "source") {
         if (block.name.empty()) {
@@ -318,7 +649,7 @@ void Resolver::declare(const Statement& statement) {
                 return;
             }
             first = &block;
-            blocks_.emplace_back(&block, kindSchema);
+            blocks_.push_back({&block, kindSchema, scope});
             return;
         }
         if (block.name.empty()) {
@@ -329,13 +660,14 @@ void Resolver::declare(const Statement& statement) {
     }
     Declaration declaration;
     declaration.keyword = keyword;
-    declaration.name = block.name;
+    declaration.name = scope + block.name;
+    declaration.scope = scope;
     declaration.kind = block.kind;
     declaration.location = block.nameLocation;
     declaration.block = &block;
     declaration.schema = kindSchema;
     if (addName(std::move(declaration)) && kindSchema) {
-        blocks_.emplace_back(&block, kindSchema);
+        blocks_.push_back({&block, kindSchema, scope});
     }
 }
 
@@ -362,6 +694,7 @@ void Resolver::applyDefines(const std::vector<DefineNode>& defines) {
         }
         if (define.value) {
             declarations_[found->second].valueExpr = define.value.get();
+            declarations_[found->second].valueScope = "";
         } else {
             // The value did not parse (already reported); keep the param quiet.
             declarations_[found->second].valueExpr = nullptr;
@@ -397,7 +730,9 @@ std::optional<Value> Resolver::evaluateParam(Declaration& param, const SourceLoc
             .help.push_back("give it a default ('param " + param.name +
                             " = ...') or set it with -D " + param.name + "=...");
     } else {
+        std::string saved = std::exchange(scope_, param.valueScope);
         value = evaluate(*param.valueExpr, "");
+        scope_ = saved;
         if (value && typed) {
             value = coerce(std::move(*value), typeSchema, "param '" + param.name + "'");
         }
@@ -411,34 +746,64 @@ std::string Resolver::describeBlock(const KindSchema& kindSchema) const {
     return kindSchema.keyword == "source" ? kindSchema.kind + " source" : kindSchema.keyword;
 }
 
-std::optional<Block> Resolver::checkBlock(const BlockNode& node, const KindSchema& kindSchema) {
+std::optional<Block> Resolver::checkBlock(const BlockEntry& entry,
+                                          const std::vector<Patch>& patches,
+                                          const Block* inherited) {
+    const BlockNode& node = *entry.node;
+    const KindSchema& kindSchema = *entry.schema;
     Block block;
     block.keyword = node.keyword;
-    block.name = node.name;
+    block.name = entry.scope + node.name;
     block.kind = node.kind;
     block.location = node.name.empty() ? node.keywordLocation : node.nameLocation;
-    std::vector<const AttributeNode*> seen;
+    if (inherited) {
+        block.attributes = inherited->attributes;
+    }
+    // The block's own attributes, then the patches (overrides, --set) that replace them.
+    std::vector<Patch> items;
     for (const AttributeNode& attribute : node.attributes) {
-        auto first = std::find_if(seen.begin(), seen.end(), [&](const AttributeNode* other) {
-            return other->name == attribute.name;
+        bool replaced = std::any_of(patches.begin(), patches.end(), [&](const Patch& patch) {
+            return patch.attribute->name == attribute.name;
         });
-        if (first != seen.end()) {
-            addError(diagnostics_, "E0209", "duplicate attribute '" + attribute.name + "'",
-                     attribute.nameLocation,
-                     "'" + attribute.name + "' is already set in this block")
-                .notes.push_back({"first set here", (*first)->nameLocation});
-            continue;
+        if (!replaced) {
+            items.push_back({&attribute, entry.scope});
         }
-        seen.push_back(&attribute);
+    }
+    const std::size_t ownCount = items.size();
+    items.insert(items.end(), patches.begin(), patches.end());
+
+    std::vector<std::string> written;
+    std::vector<const AttributeNode*> seen;
+    for (std::size_t index = 0; index < items.size(); ++index) {
+        const AttributeNode& attribute = *items[index].attribute;
+        if (index < ownCount) {
+            auto first = std::find_if(seen.begin(), seen.end(), [&](const AttributeNode* other) {
+                return other->name == attribute.name;
+            });
+            if (first != seen.end()) {
+                addError(diagnostics_, "E0209", "duplicate attribute '" + attribute.name + "'",
+                         attribute.nameLocation,
+                         "'" + attribute.name + "' is already set in this block")
+                    .notes.push_back({"first set here", (*first)->nameLocation});
+                continue;
+            }
+            seen.push_back(&attribute);
+        }
+        written.push_back(attribute.name);
         const AttributeSchema* attributeSchema = kindSchema.find(attribute.name);
         if (!attributeSchema) {
             std::vector<std::string> valid;
             for (const AttributeSchema& candidate : kindSchema.attributes) {
                 valid.push_back(candidate.name);
             }
-            Diagnostic& diagnostic = addError(
-                diagnostics_, "E0208", "unknown attribute '" + attribute.name + "'",
-                attribute.nameLocation, "not an attribute of " + describeBlock(kindSchema));
+            std::string label = "not an attribute of " + describeBlock(kindSchema);
+            Diagnostic& diagnostic =
+                options_.lenient
+                    ? addWarning(diagnostics_, "W0102",
+                                 "unknown attribute '" + attribute.name + "' ignored",
+                                 attribute.nameLocation, label)
+                    : addError(diagnostics_, "E0208", "unknown attribute '" + attribute.name + "'",
+                               attribute.nameLocation, label);
             if (auto match = closestMatch(attribute.name, valid)) {
                 diagnostic.help.push_back("did you mean '" + *match + "'?");
             }
@@ -448,8 +813,10 @@ std::optional<Block> Resolver::checkBlock(const BlockNode& node, const KindSchem
         bool referenceLike = attributeSchema->type == ValueType::Reference ||
                              (attributeSchema->type == ValueType::List &&
                               attributeSchema->element == ValueType::Reference);
+        std::string saved = std::exchange(scope_, items[index].scope);
         std::optional<Value> value =
             evaluate(*attribute.value, referenceLike ? referenceTarget(*attributeSchema) : "");
+        scope_ = saved;
         if (!value) {
             continue;
         }
@@ -457,26 +824,70 @@ std::optional<Block> Resolver::checkBlock(const BlockNode& node, const KindSchem
         if (!value) {
             continue;
         }
+        auto existing = std::find_if(block.attributes.begin(), block.attributes.end(),
+                                     [&](const Attribute& a) { return a.name == attribute.name; });
+        if (attribute.op != AssignOp::Set) {
+            const char* opText = attribute.op == AssignOp::Append ? "+=" : "-=";
+            if (attributeSchema->type != ValueType::List) {
+                addError(
+                    diagnostics_, "E0412", std::string("'") + opText + "' needs a list attribute",
+                    attribute.opLocation,
+                    "'" + attribute.name + "' is " + withArticle(expectedName(*attributeSchema)))
+                    .help.push_back("write '" + attribute.name + " = ...' instead");
+                continue;
+            }
+            if (existing == block.attributes.end() || !existing->value.get<ValueList>()) {
+                addError(
+                    diagnostics_, "E0412", std::string("'") + opText + "' needs an inherited list",
+                    attribute.opLocation, "'" + attribute.name + "' has no inherited value to edit")
+                    .help.push_back("use '" + std::string(opText) +
+                                    "' in a scenario that extends one setting '" + attribute.name +
+                                    "', or write '" + attribute.name + " = [...]'");
+                continue;
+            }
+            ValueList list = *existing->value.get<ValueList>();
+            for (const Value& item : *value->get<ValueList>()) {
+                std::string text = canonicalText(item);
+                auto same = std::find_if(list.begin(), list.end(), [&](const Value& other) {
+                    return canonicalText(other) == text;
+                });
+                if (attribute.op == AssignOp::Append) {
+                    list.push_back(item);
+                } else if (same != list.end()) {
+                    list.erase(same);
+                } else {
+                    addWarning(diagnostics_, "W0202",
+                               "'-=' removes nothing: the inherited '" + attribute.name +
+                                   "' does not hold this value",
+                               item.location, "not in the inherited list");
+                }
+            }
+            Value merged = makeValue(std::move(list), attribute.value->location);
+            existing->value = std::move(merged);
+            existing->location = attribute.nameLocation;
+            continue;
+        }
+        if (existing != block.attributes.end()) {
+            block.attributes.erase(existing);
+        }
+        rebasePath(attribute, *value);
         block.attributes.push_back({attribute.name, std::move(*value), attribute.nameLocation});
     }
     for (const AttributeSchema& attributeSchema : kindSchema.attributes) {
-        bool written = std::any_of(seen.begin(), seen.end(), [&](const AttributeNode* attribute) {
-            return attribute->name == attributeSchema.name;
-        });
-        if (attributeSchema.required && !written) {
+        // A child scenario inherits what it omits; a broken parent is reported on its own.
+        bool present =
+            std::find(written.begin(), written.end(), attributeSchema.name) != written.end() ||
+            (inherited && inherited->find(attributeSchema.name)) || !node.extends.empty();
+        if (attributeSchema.required && !present) {
             std::string what = describeBlock(kindSchema);
             if (!node.name.empty()) {
-                what += " '" + node.name + "'";
+                what += " '" + block.name + "'";
             }
             addError(diagnostics_, "E0405",
                      "missing required attribute '" + attributeSchema.name + "'", block.location,
                      what + " needs '" + attributeSchema.name + "'")
                 .help.push_back(attributeSchema.name + ": " + attributeSchema.doc);
         }
-    }
-    std::vector<std::string> written;
-    for (const AttributeNode* attribute : seen) {
-        written.push_back(attribute->name);
     }
     // An attribute written with an error gets no default: the error already speaks for it.
     fillDefaults(block, kindSchema, written);
@@ -508,6 +919,59 @@ std::optional<Value> Resolver::evaluate(const Expr& expr, const std::string& exp
             return makeValue(expr.boolean, expr.location);
         case Expr::Kind::Word:
             return makeValue(Word{expr.text}, expr.location);
+        case Expr::Kind::DateTime:
+            return makeValue(expr.text, expr.location);
+        case Expr::Kind::Conditional: {
+            std::optional<Value> condition = evaluate(*expr.children[0], "");
+            std::optional<Value> then = evaluate(*expr.children[1], expectedTarget);
+            std::optional<Value> otherwise = evaluate(*expr.children[2], expectedTarget);
+            if (!condition || !then || !otherwise) {
+                return std::nullopt;
+            }
+            const bool* flag = condition->get<bool>();
+            if (!flag) {
+                addError(diagnostics_, "E0402", "expected bool, found " + condition->typeName(),
+                         condition->location, "a condition must be true or false");
+                return std::nullopt;
+            }
+            Value chosen = *flag ? std::move(*then) : std::move(*otherwise);
+            return chosen;
+        }
+        case Expr::Kind::Index: {
+            std::optional<Value> container = evaluate(*expr.children[0], expectedTarget);
+            std::optional<Value> index = evaluate(*expr.children[1], "");
+            if (!container || !index) {
+                return std::nullopt;
+            }
+            if (const std::string* key = index->get<std::string>()) {
+                return fieldOf(*container, *key, expr.location);
+            }
+            const ValueList* list = container->get<ValueList>();
+            const Quantity* position = index->get<Quantity>();
+            if (!list || !position || position->dimension != Dimension::None) {
+                addError(diagnostics_, "E0402",
+                         "cannot index " + withArticle(container->typeName()) + " with " +
+                             withArticle(index->typeName()),
+                         expr.location, "write list[number] or object[\"key\"]");
+                return std::nullopt;
+            }
+            double at = position->value;
+            if (at < 0 || at != std::floor(at) || at >= static_cast<double>(list->size())) {
+                addError(diagnostics_, "E0404", "index out of range", index->location,
+                         formatNumber(at) + " is not in [0, " + std::to_string(list->size()) + ")");
+                return std::nullopt;
+            }
+            Value element = (*list)[static_cast<std::size_t>(at)];
+            element.location = expr.location;
+            return element;
+        }
+        case Expr::Kind::Field: {
+            std::optional<Value> object = evaluate(*expr.children[0], "");
+            if (!object) {
+                return std::nullopt;
+            }
+            return fieldOf(*object, expr.text, expr.location);
+        }
         case Expr::Kind::Reference:
             return evaluateReference(expr, expectedTarget);
         case Expr::Kind::Unary:
@@ -534,7 +998,8 @@ std::optional<Value> Resolver::evaluate(const Expr& expr, const std::string& exp
             ValueObject object;
             bool ok = true;
             for (std::size_t i = 0; i < expr.children.size(); ++i) {
-                const auto& [key, keyLocation] = expr.keys[i];
+                const std::string& key = expr.keys[i].first;
+                const SourceLocation& keyLocation = expr.keys[i].second;
                 auto first = std::find_if(object.begin(), object.end(),
                                           [&](const auto& entry) { return entry.first == key; });
                 if (first != object.end()) {
@@ -560,52 +1025,169 @@ std::optional<Value> Resolver::evaluate(const Expr& expr, const std::string& exp
 
 std::optional<Value> Resolver::evaluateReference(const Expr& expr,
                                                  const std::string& expectedTarget) {
-    auto found = names_.find(expr.text);
-    if (found == names_.end()) {
+    const std::string written = expr.text + (expr.field.empty() ? "" : "." + expr.field);
+    std::vector<std::string> fields;
+    Declaration* found = lookup(scope_, written, &fields);
+    if (!found) {
         Diagnostic& diagnostic =
-            addError(diagnostics_, "E0201", "unknown reference '@" + expr.text + "'", expr.location,
+            addError(diagnostics_, "E0201", "unknown reference '@" + written + "'", expr.location,
                      (expectedTarget.empty() ? "nothing" : "no " + expectedTarget) + " named '" +
-                         expr.text + "'");
+                         written + "'");
         std::vector<std::string> preferred;
         std::vector<std::string> all;
         for (const Declaration& declaration : declarations_) {
-            all.push_back(declaration.name);
+            if (declaration.name.compare(0, scope_.size(), scope_) != 0) {
+                continue;
+            }
+            std::string local = declaration.name.substr(scope_.size());
+            all.push_back(local);
             if (declaration.keyword == expectedTarget) {
-                preferred.push_back(declaration.name);
+                preferred.push_back(local);
             }
         }
-        std::optional<std::string> match = closestMatch(expr.text, preferred);
+        std::optional<std::string> match = closestMatch(written, preferred);
         if (!match) {
-            match = closestMatch(expr.text, all);
+            match = closestMatch(written, all);
         }
         if (match) {
-            diagnostic.help.push_back("did you mean '@" + *match + "' (defined at " +
-                                      shortLocation(declarations_[names_[*match]].location) + ")?");
+            diagnostic.help.push_back(
+                "did you mean '@" + *match + "' (defined at " +
+                shortLocation(declarations_[names_[scope_ + *match]].location) + ")?");
         }
         return std::nullopt;
     }
-    Declaration& declaration = declarations_[found->second];
-    if (!expr.field.empty()) {
-        addError(diagnostics_, "E0210",
-                 "field access '@" + expr.text + "." + expr.field + "' is not supported yet",
-                 expr.location, "write '@" + expr.text + "' or the value itself");
-        return std::nullopt;
-    }
+    Declaration& declaration = *found;
+    std::optional<Value> value;
+    std::size_t next = 0;
     if (declaration.keyword == "param") {
         declaration.used = true;
-        std::optional<Value> value = evaluateParam(declaration, expr.location);
-        if (value) {
-            value->location = expr.location;
-        }
-        return value;
+        value = evaluateParam(declaration, expr.location);
+    } else if (fields.empty()) {
+        return makeValue(Reference{declaration.keyword, declaration.name}, expr.location);
+    } else {
+        value = evaluateBlockField(declaration, fields[0], expr.location);
+        next = 1;
     }
-    return makeValue(Reference{declaration.keyword, declaration.name}, expr.location);
+    for (; value && next < fields.size(); ++next) {
+        value = fieldOf(*value, fields[next], expr.location);
+    }
+    if (value) {
+        value->location = expr.location;
+    }
+    return value;
+}
+
+std::optional<Value> Resolver::evaluateBlockField(Declaration& declaration,
+                                                  const std::string& field,
+                                                  const SourceLocation& location) {
+    if (!declaration.schema || !declaration.block) {
+        return std::nullopt;  // the block's own error speaks for it
+    }
+    const AttributeSchema* attributeSchema = declaration.schema->find(field);
+    if (!attributeSchema) {
+        std::vector<std::string> valid;
+        for (const AttributeSchema& candidate : declaration.schema->attributes) {
+            valid.push_back(candidate.name);
+        }
+        Diagnostic& diagnostic = addError(
+            diagnostics_, "E0210", "unknown field '" + field + "' of '" + declaration.name + "'",
+            location,
+            "'" + declaration.name + "' is " + withArticle(describeBlock(*declaration.schema)) +
+                " without '" + field + "'");
+        if (auto match = closestMatch(field, valid)) {
+            diagnostic.help.push_back("did you mean '" + *match + "'?");
+        }
+        diagnostic.help.push_back("fields are: " + join(valid));
+        return std::nullopt;
+    }
+    const AttributeNode* written = nullptr;
+    std::string scope = declaration.scope;
+    for (const AttributeNode& attribute : declaration.block->attributes) {
+        if (attribute.name == field && attribute.op == AssignOp::Set) {
+            written = &attribute;
+        }
+    }
+    if (auto setFound = setPatches_.find(declaration.name); setFound != setPatches_.end()) {
+        for (const Patch& patch : setFound->second) {
+            if (patch.attribute->name == field) {
+                written = patch.attribute;
+                scope = patch.scope;
+            }
+        }
+    }
+    if (!written) {
+        if (attributeSchema->defaultValue) {
+            Value value = *attributeSchema->defaultValue;
+            value.location = location;
+            return value;
+        }
+        addError(diagnostics_, "E0210", "'" + declaration.name + "' has no '" + field + "'",
+                 location, "'" + field + "' is not set and has no default");
+        return std::nullopt;
+    }
+    const std::string key = declaration.name + "." + field;
+    if (std::find(evaluatingFields_.begin(), evaluatingFields_.end(), key) !=
+        evaluatingFields_.end()) {
+        addError(diagnostics_, "E0302", "'@" + key + "' depends on itself", location,
+                 "used while computing its own value");
+        return std::nullopt;
+    }
+    evaluatingFields_.push_back(key);
+    std::string saved = std::exchange(scope_, scope);
+    bool referenceLike = attributeSchema->type == ValueType::Reference ||
+                         (attributeSchema->type == ValueType::List &&
+                          attributeSchema->element == ValueType::Reference);
+    std::optional<Value> value =
+        evaluate(*written->value, referenceLike ? referenceTarget(*attributeSchema) : "");
+    if (value) {
+        value = coerce(std::move(*value), *attributeSchema, "'" + field + "'");
+    }
+    scope_ = saved;
+    evaluatingFields_.pop_back();
+    return value;
+}
+
+std::optional<Value> Resolver::fieldOf(const Value& value, const std::string& field,
+                                       const SourceLocation& location) {
+    if (const GeoPosition* geo = value.get<GeoPosition>()) {
+        if (field == "latitude" || field == "lat") {
+            return makeValue(Quantity{geo->latitude, Dimension::Angle}, location);
+        }
+        if (field == "longitude" || field == "lon") {
+            return makeValue(Quantity{geo->longitude, Dimension::Angle}, location);
+        }
+        if (field == "height" && geo->height) {
+            return makeValue(Quantity{*geo->height, Dimension::Length}, location);
+        }
+    } else if (const ValueObject* object = value.get<ValueObject>()) {
+        for (const auto& [key, item] : *object) {
+            if (key == field) {
+                Value result = item;
+                result.location = location;
+                return result;
+            }
+        }
+    }
+    addError(diagnostics_, "E0210",
+             "unknown field '" + field + "' of " + withArticle(value.typeName()), location,
+             value.get<GeoPosition>() ? "geo positions have latitude, longitude and height"
+                                      : "no field named '" + field + "'");
+    return std::nullopt;
 }
 
 std::optional<Value> Resolver::evaluateUnary(const Expr& expr) {
     std::optional<Value> operand = evaluate(*expr.children[0], "");
     if (!operand) {
         return std::nullopt;
+    }
+    if (expr.op == '!') {
+        const bool* flag = operand->get<bool>();
+        if (!flag) {
+            addError(diagnostics_, "E0402", "expected bool, found " + operand->typeName(),
+                     expr.location, "'!' works on true and false only");
+            return std::nullopt;
+        }
+        return makeValue(!*flag, expr.location);
     }
     const Quantity* quantity = operand->get<Quantity>();
     if (!quantity) {
@@ -626,9 +1208,59 @@ std::optional<Value> Resolver::evaluateBinary(const Expr& expr) {
     if (!left || !right) {
         return std::nullopt;
     }
+    if (expr.op == '&' || expr.op == '|') {
+        const bool* a = left->get<bool>();
+        const bool* b = right->get<bool>();
+        if (!a || !b) {
+            const Value& wrong = a ? *right : *left;
+            addError(diagnostics_, "E0402", "expected bool, found " + wrong.typeName(),
+                     wrong.location,
+                     std::string("'") + operatorText(expr.op) + "' works on true and false only");
+            return std::nullopt;
+        }
+        return makeValue(expr.op == '&' ? (*a && *b) : (*a || *b), expr.location);
+    }
+    if (expr.op == 'e' || expr.op == 'n') {
+        const Quantity* a = left->get<Quantity>();
+        const Quantity* b = right->get<Quantity>();
+        bool comparable =
+            left->data.index() == right->data.index() && (!a || a->dimension == b->dimension);
+        if (!comparable) {
+            addError(diagnostics_, "E0401",
+                     "cannot compare " + left->typeName() + " and " + right->typeName(),
+                     expr.location, "both sides must have the same type and unit");
+            return std::nullopt;
+        }
+        bool equal = canonicalText(*left) == canonicalText(*right);
+        return makeValue(expr.op == 'e' ? equal : !equal, expr.location);
+    }
+    if (expr.op == '<' || expr.op == '>' || expr.op == 'l' || expr.op == 'g') {
+        const Quantity* a = left->get<Quantity>();
+        const Quantity* b = right->get<Quantity>();
+        const std::string* sa = left->get<std::string>();
+        const std::string* sb = right->get<std::string>();
+        int order = 0;
+        if (a && b && a->dimension == b->dimension) {
+            order = a->value < b->value ? -1 : (a->value > b->value ? 1 : 0);
+        } else if (sa && sb) {
+            // Strings compare by bytes, which orders canonical dates and times correctly.
+            order = sa->compare(*sb) < 0 ? -1 : (sa->compare(*sb) > 0 ? 1 : 0);
+        } else {
+            addError(diagnostics_, "E0401",
+                     "cannot compare " + left->typeName() + " and " + right->typeName(),
+                     expr.location, "both sides must be quantities of the same unit");
+            return std::nullopt;
+        }
+        bool result = expr.op == '<'   ? order < 0
+                      : expr.op == '>' ? order > 0
+                      : expr.op == 'l' ? order <= 0
+                                       : order >= 0;
+        return makeValue(result, expr.location);
+    }
     const char* verb = expr.op == '+'   ? "add"
                        : expr.op == '-' ? "subtract"
                        : expr.op == '*' ? "multiply"
+                       : expr.op == '%' ? "take the remainder of"
                                         : "divide";
     const char* joiner = expr.op == '/' ? " by " : " and ";
     const Quantity* a = left->get<Quantity>();
@@ -669,7 +1301,12 @@ std::optional<Value> Resolver::evaluateBinary(const Expr& expr) {
                          "this is zero");
                 return std::nullopt;
             }
-            if (a->dimension == b->dimension) {
+            if (expr.op == '%') {
+                if (a->dimension != b->dimension && !scalar(b->dimension)) {
+                    return incompatible("the units do not match");
+                }
+                result = {std::fmod(a->value, b->value), a->dimension};
+            } else if (a->dimension == b->dimension) {
                 result = {a->value / b->value, Dimension::None};
             } else if (scalar(b->dimension)) {
                 result = {a->value / b->value, a->dimension};
@@ -705,30 +1342,185 @@ std::optional<double> Resolver::coerceAngle(const Value& value, const std::strin
 }
 
 std::optional<Value> Resolver::evaluateCall(const Expr& expr) {
-    if (expr.text != "geo") {
+    static const std::vector<std::string> kFunctions = {"geo",         "min",  "max",  "clamp",
+                                                        "interpolate", "step", "match"};
+    if (std::find(kFunctions.begin(), kFunctions.end(), expr.text) == kFunctions.end()) {
         Diagnostic& diagnostic =
             addError(diagnostics_, "E0211", "unknown function '" + expr.text + "'", expr.location,
                      "not a function");
-        if (auto match = closestMatch(expr.text, {"geo"})) {
+        if (auto match = closestMatch(expr.text, kFunctions)) {
             diagnostic.help.push_back("did you mean '" + *match + "'?");
         }
-        diagnostic.help.push_back("functions are: geo");
+        diagnostic.help.push_back("functions are: " + join(kFunctions));
         return std::nullopt;
     }
-    if (expr.children.size() < 2 || expr.children.size() > 3) {
-        addError(diagnostics_, "E0407",
-                 "geo() takes 2 or 3 arguments, found " + std::to_string(expr.children.size()),
-                 expr.location, "write geo(latitude, longitude[, height])");
+    const std::size_t count = expr.children.size();
+    auto arity = [&](bool ok, const std::string& usage) {
+        if (!ok) {
+            addError(diagnostics_, "E0407",
+                     expr.text + "() takes " + usage + ", found " + std::to_string(count),
+                     expr.location, "write " + expr.text + "(" + usage + ")");
+        }
+        return ok;
+    };
+    bool countOk = true;
+    if (expr.text == "geo") {
+        if (count < 2 || count > 3) {
+            addError(diagnostics_, "E0407",
+                     "geo() takes 2 or 3 arguments, found " + std::to_string(count), expr.location,
+                     "write geo(latitude, longitude[, height])");
+            return std::nullopt;
+        }
+    } else if (expr.text == "min" || expr.text == "max") {
+        countOk = arity(count >= 1, "one or more values");
+    } else if (expr.text == "clamp") {
+        countOk = arity(count == 3, "value, lowest, highest");
+    } else if (expr.text == "interpolate") {
+        countOk = arity(count >= 5 && count % 2 == 1, "x, x1, y1, x2, y2, ...");
+    } else if (expr.text == "step") {
+        countOk = arity(count >= 2 && count % 2 == 0, "x, y0, x1, y1, ...");
+    } else if (expr.text == "match") {
+        countOk = arity(count >= 4 && count % 2 == 0, "value, key1, result1, ..., default");
+    }
+    if (!countOk) {
         return std::nullopt;
     }
     std::vector<Value> arguments;
+    bool evaluated = true;
     for (const ExprPtr& child : expr.children) {
         std::optional<Value> argument = evaluate(*child, "");
-        if (!argument) {
+        if (argument) {
+            arguments.push_back(std::move(*argument));
+        } else {
+            evaluated = false;
+        }
+    }
+    if (!evaluated) {
+        return std::nullopt;
+    }
+    if (expr.text == "geo") {
+        return evaluateGeo(expr, std::move(arguments));
+    }
+    if (expr.text == "match") {
+        std::string key = canonicalText(arguments[0]);
+        for (std::size_t i = 1; i + 1 < arguments.size(); i += 2) {
+            if (canonicalText(arguments[i]) == key) {
+                Value result = arguments[i + 1];
+                result.location = expr.location;
+                return result;
+            }
+        }
+        Value result = arguments.back();
+        result.location = expr.location;
+        return result;
+    }
+    // The other functions work on quantities; x and the stops share one unit.
+    auto quantityAt = [&](std::size_t i, Dimension dimension) -> const Quantity* {
+        const Quantity* quantity = arguments[i].get<Quantity>();
+        if (!quantity) {
+            addError(diagnostics_, "E0402", "expected a number, found " + arguments[i].typeName(),
+                     arguments[i].location, expr.text + "() works on numbers and quantities");
+            return nullptr;
+        }
+        if (quantity->dimension != dimension) {
+            addError(diagnostics_, "E0403",
+                     std::string("expected ") + dimensionName(dimension) + ", found " +
+                         dimensionName(quantity->dimension),
+                     arguments[i].location,
+                     "the arguments of " + expr.text + "() must share one unit");
+            return nullptr;
+        }
+        return quantity;
+    };
+    const Quantity* first = arguments[0].get<Quantity>();
+    if (!first) {
+        quantityAt(0, Dimension::None);
+        return std::nullopt;
+    }
+    if (expr.text == "min" || expr.text == "max" || expr.text == "clamp") {
+        Quantity result = *first;
+        for (std::size_t i = 1; i < arguments.size(); ++i) {
+            const Quantity* other = quantityAt(i, first->dimension);
+            if (!other) {
+                return std::nullopt;
+            }
+            if (expr.text == "min" || (expr.text == "clamp" && i == 2)) {
+                result.value = std::min(result.value, other->value);
+            } else {
+                result.value = std::max(result.value, other->value);
+            }
+        }
+        return makeValue(result, expr.location);
+    }
+    // step / interpolate: stops at odd (interpolate) or odd (step) positions must ascend.
+    const bool step = expr.text == "step";
+    const std::size_t firstStop = step ? 2 : 1;
+    double previous = -HUGE_VAL;
+    for (std::size_t i = firstStop; i < arguments.size(); i += 2) {
+        const Quantity* stop = quantityAt(i, first->dimension);
+        if (!stop) {
             return std::nullopt;
         }
-        arguments.push_back(std::move(*argument));
+        if (stop->value < previous) {
+            addError(diagnostics_, "E0404", "stops of " + expr.text + "() must ascend",
+                     arguments[i].location, "smaller than the stop before it");
+            return std::nullopt;
+        }
+        previous = stop->value;
     }
+    const double x = first->value;
+    if (step) {
+        std::size_t chosen = 1;
+        for (std::size_t i = 2; i < arguments.size(); i += 2) {
+            if (x >= arguments[i].get<Quantity>()->value) {
+                chosen = i + 1;
+            }
+        }
+        Value result = arguments[chosen];
+        result.location = expr.location;
+        return result;
+    }
+    const Quantity* output = arguments[2].get<Quantity>();
+    const Color* colour = arguments[2].get<Color>();
+    for (std::size_t i = 2; i < arguments.size(); i += 2) {
+        if (output && !quantityAt(i, output->dimension)) {
+            return std::nullopt;
+        }
+        if (!output && (!colour || !arguments[i].get<Color>())) {
+            addError(diagnostics_, "E0402",
+                     "expected a quantity or colour, found " + arguments[i].typeName(),
+                     arguments[i].location, "interpolate() blends quantities or colours");
+            return std::nullopt;
+        }
+    }
+    std::size_t upper = 1;
+    while (upper < arguments.size() && arguments[upper].get<Quantity>()->value < x) {
+        upper += 2;
+    }
+    if (upper == 1 || upper >= arguments.size()) {
+        // Outside the stops: hold the nearest end.
+        Value result = arguments[upper == 1 ? 2 : arguments.size() - 1];
+        result.location = expr.location;
+        return result;
+    }
+    const double x0 = arguments[upper - 2].get<Quantity>()->value;
+    const double x1 = arguments[upper].get<Quantity>()->value;
+    const double t = x1 > x0 ? (x - x0) / (x1 - x0) : 1.0;
+    const Value& a = arguments[upper - 1];
+    const Value& b = arguments[upper + 1];
+    if (output) {
+        Quantity result{a.get<Quantity>()->value * (1 - t) + b.get<Quantity>()->value * t,
+                        output->dimension};
+        return makeValue(result, expr.location);
+    }
+    const Color& ca = *a.get<Color>();
+    const Color& cb = *b.get<Color>();
+    auto mix = [&](float u, float v) { return static_cast<float>(u * (1 - t) + v * t); };
+    return makeValue(Color{mix(ca.r, cb.r), mix(ca.g, cb.g), mix(ca.b, cb.b), mix(ca.a, cb.a)},
+                     expr.location);
+}
+
+std::optional<Value> Resolver::evaluateGeo(const Expr& expr, std::vector<Value> arguments) {
     std::optional<double> latitude = coerceAngle(arguments[0], "latitude");
     std::optional<double> longitude = coerceAngle(arguments[1], "longitude");
     bool ok = latitude && longitude;
@@ -818,8 +1610,64 @@ std::optional<Value> Resolver::coerce(Value value, const AttributeSchema& schema
             return value.get<Color>() ? std::optional<Value>(std::move(value)) : wrongType();
         case ValueType::Geo:
             return value.get<GeoPosition>() ? std::optional<Value>(std::move(value)) : wrongType();
-        case ValueType::Object:
-            return value.get<ValueObject>() ? std::optional<Value>(std::move(value)) : wrongType();
+        case ValueType::DateTime: {
+            const std::string* text = value.get<std::string>();
+            if (!text || !isCanonicalDateTime(*text)) {
+                return wrongType();
+            }
+            return value;
+        }
+        case ValueType::Object: {
+            ValueObject* object = std::get_if<ValueObject>(&value.data);
+            if (!object) {
+                return wrongType();
+            }
+            if (schema.fields.empty()) {
+                return value;
+            }
+            bool ok = true;
+            std::vector<std::string> valid;
+            for (const AttributeSchema& field : schema.fields) {
+                valid.push_back(field.name);
+            }
+            for (auto& [key, item] : *object) {
+                const AttributeSchema* field = nullptr;
+                for (const AttributeSchema& candidate : schema.fields) {
+                    if (candidate.name == key) {
+                        field = &candidate;
+                    }
+                }
+                if (!field) {
+                    Diagnostic& diagnostic =
+                        addError(diagnostics_, "E0208", "unknown key '" + key + "'", item.location,
+                                 "not a key of " + what);
+                    if (auto match = closestMatch(key, valid)) {
+                        diagnostic.help.push_back("did you mean '" + *match + "'?");
+                    }
+                    diagnostic.help.push_back("valid keys: " + join(valid));
+                    ok = false;
+                    continue;
+                }
+                std::optional<Value> checked = coerce(item, *field, "'" + key + "'");
+                if (checked) {
+                    item = std::move(*checked);
+                } else {
+                    ok = false;
+                }
+            }
+            for (const AttributeSchema& field : schema.fields) {
+                bool present = std::any_of(object->begin(), object->end(), [&](const auto& entry) {
+                    return entry.first == field.name;
+                });
+                if (field.required && !present) {
+                    addError(diagnostics_, "E0405", "missing required key '" + field.name + "'",
+                             value.location, what + " needs '" + field.name + "'")
+                        .help.push_back(field.name + ": " + field.doc);
+                    ok = false;
+                }
+            }
+            return ok ? std::optional<Value>(std::move(value)) : std::nullopt;
+        }
         case ValueType::Word: {
             const Word* word = value.get<Word>();
             if (!word) {
@@ -880,6 +1728,7 @@ std::optional<Value> Resolver::coerce(Value value, const AttributeSchema& schema
             element.target = schema.target;
             element.minimum = schema.minimum;
             element.maximum = schema.maximum;
+            element.fields = schema.fields;
             bool ok = true;
             for (Value& item : *list) {
                 // A list of records (a hypsometric ramp) cannot be described by `element`;
@@ -932,7 +1781,7 @@ void Resolver::findCycles(const std::vector<Block>& sources) {
     }
     std::map<std::string, int> colour;
     std::vector<Edge> path;
-    std::set<std::string> reported;
+    std::set<std::string>& reported = reportedCycles_;
     std::function<void(const std::string&)> visit = [&](const std::string& node) {
         colour[node] = 1;
         for (const Edge& edge : graph[node]) {
@@ -966,7 +1815,7 @@ void Resolver::findCycles(const std::vector<Block>& sources) {
                     diagnostic.notes.push_back(
                         {"'" + cycle[i].from + "' uses '" + cycle[i].to + "'", cycle[i].location});
                 }
-                diagnostic.help.push_back("cycle: " + chain);
+                diagnostic.cycle = chain;
             } else if (colour[edge.to] == 0 && order.count(edge.to)) {
                 path.push_back(edge);
                 visit(edge.to);

@@ -48,6 +48,25 @@ std::string describeToken(const Token& token) {
             return "end of line";
         case TokenKind::EndOfFile:
             return "end of file";
+        case TokenKind::DateTime:
+            return "date/time";
+        case TokenKind::Comment:
+            return "comment";
+        case TokenKind::Percent:
+        case TokenKind::EqualEqual:
+        case TokenKind::BangEqual:
+        case TokenKind::Less:
+        case TokenKind::LessEqual:
+        case TokenKind::Greater:
+        case TokenKind::GreaterEqual:
+        case TokenKind::AndAnd:
+        case TokenKind::OrOr:
+        case TokenKind::Bang:
+        case TokenKind::Question:
+        case TokenKind::PlusEquals:
+        case TokenKind::MinusEquals:
+        case TokenKind::Dot:
+            return "'" + token.text + "'";
     }
     return "token";
 }

@@ -4,11 +4,22 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sylva::app {
 
 int runRender(const std::vector<std::string>& arguments);
 int runCheck(const std::vector<std::string>& arguments);
+int runFmt(const std::vector<std::string>& arguments);
+int runDump(const std::vector<std::string>& arguments);
+int runDoc(const std::vector<std::string>& arguments);
+int runBench(const std::vector<std::string>& arguments);
+
+// Removes every `--set block.attribute=value` (or `--set=...`) from `arguments` and
+// returns them as (path, value) pairs; the option may repeat, which CommandLine does not
+// allow. A malformed one sets `error`.
+std::vector<std::pair<std::string, std::string>> extractSets(std::vector<std::string>& arguments,
+                                                             std::string& error);
 
 }  // namespace sylva::app

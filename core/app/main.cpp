@@ -15,8 +15,17 @@ void printUsage(std::FILE* stream) {
         "commands:\n"
         "  render PROJECT [--views NAME] [--out DIR] [--size WxH] [--gl egl|osmesa|glfw] [-D name=value]\n"
         "                 render the project's views to images\n"
-        "  check PROJECT [-D name=value]\n"
+        "  check PROJECT [-D name=value] [--set block.attr=value] [--print-params] [--lenient]\n"
+        "                [--diagnostics=text|json]\n"
         "                 report every problem in a project without rendering\n"
+        "  fmt [--check] FILES...\n"
+        "                 rewrite project files in canonical layout (--check: only report)\n"
+        "  dump --json PROJECT [-D name=value] [--set block.attr=value]\n"
+        "                 print the evaluated model of every scenario as JSON\n"
+        "  doc [KIND] [--markdown] [--update FILE]\n"
+        "                 the language reference from the schema registry\n"
+        "  bench SUITE [--json]\n"
+        "                 run a benchmark suite (dsl)\n"
         "\n"
         "environment:\n"
         "  SYLVA_GL=egl|osmesa|glfw   OpenGL back end (default: EGL, falling back to OSMesa)\n"
@@ -38,6 +47,18 @@ int main(int argc, char** argv) {
     }
     if (command == "check") {
         return sylva::app::runCheck(arguments);
+    }
+    if (command == "fmt") {
+        return sylva::app::runFmt(arguments);
+    }
+    if (command == "dump") {
+        return sylva::app::runDump(arguments);
+    }
+    if (command == "doc") {
+        return sylva::app::runDoc(arguments);
+    }
+    if (command == "bench") {
+        return sylva::app::runBench(arguments);
     }
     if (command == "--help" || command == "-h" || command == "help") {
         printUsage(stdout);

@@ -91,6 +91,36 @@ AttributeSchema referenceList(std::string name, std::string target, PortType por
     return a;
 }
 
+AttributeSchema wordChoice(std::string name, std::vector<std::string> words, std::string defaultWord,
+                           std::string doc) {
+    AttributeSchema a;
+    a.name = std::move(name);
+    a.type = ValueType::Word;
+    a.words = std::move(words);
+    Value v;
+    v.data = Word{std::move(defaultWord)};
+    a.defaultValue = v;
+    a.doc = std::move(doc);
+    return a;
+}
+
+AttributeSchema listOf(std::string name, ValueType element, Dimension dimension, bool required,
+                       std::string doc) {
+    AttributeSchema a;
+    a.name = std::move(name);
+    a.type = ValueType::List;
+    a.element = element;
+    a.dimension = dimension;
+    a.required = required;
+    a.doc = std::move(doc);
+    return a;
+}
+
+// The source kinds of core/sources/{Raster,Constant,Adjust,Blend,Mask}Source.cpp. Their output
+// port depends on their attributes (`kind`, or the inputs), so their schema output is `none`
+// and the graph builder checks the actual port types.
+void addImageSourceKinds(SchemaRegistry& registry);
+
 SchemaRegistry makeBuiltin() {
     SchemaRegistry registry;
 
@@ -153,6 +183,8 @@ SchemaRegistry makeBuiltin() {
                  "Slope where rock starts to show."),
           number("slope_end", Dimension::Angle, 45 * kDegree, 0, 90 * kDegree,
                  "Slope where the surface is fully rock.")}});
+
+    addImageSourceKinds(registry);
 
     registry.add({"scenario", "", PortType::None,
                   "A state of the landscape: the layers the terrain is made of. Elevation, "
@@ -221,7 +253,129 @@ SchemaRegistry makeBuiltin() {
               number("max_level", Dimension::None, 24, 4, 28,
                      "Finest clipmap level drawn.")}});
     }
+    addLanguageSchema(registry);
     return registry;
+}
+
+void addImageSourceKinds(SchemaRegistry& registry) {
+    const Value grey = color(0.5f, 0.5f, 0.5f);
+    registry.add(
+        {"source", "raster", PortType::None,
+         "Any raster GDAL reads (GeoTIFF/COG, VRT, JPEG2000 where the driver exists, PNG/JPEG "
+         "with a world file ...) in any CRS, reprojected on the fly to the longitude/latitude "
+         "tile grid: every texel centre is transformed to the file's CRS (exactly, or interpolated "
+         "along rows where that is within 0.125 source pixels, like GDAL's approximate "
+         "transformer), the window it spans is read (through the file's overviews, averaged, when a texel covers more than "
+         "one pixel) and resampled. Outputs an elevation (one channel, metres; its coverage is "
+         "a separate mask that `blend` uses) or an image (linear RGB + alpha = coverage). "
+         "Texels outside the file or on no-data have coverage 0. A missing, truncated or "
+         "unreadable file, or one without a usable CRS, fails every tile with one message "
+         "naming the file and the reason.",
+         {[] {
+              AttributeSchema file = simple("file", ValueType::String, std::nullopt,
+                                            "Path of the raster, relative to the project file.");
+              file.required = true;
+              return file;
+          }(),
+          wordChoice("kind", {"auto", "elevation", "image"}, "auto",
+                     "What the bands are: elevation (one band, metres after the band's "
+                     "vertical unit), image (one to three bands as RGB), or auto: one band is "
+                     "elevation, more are an image."),
+          listOf("bands", ValueType::Number, Dimension::None, false,
+                 "Band numbers to read, from 1 (e.g. [3, 2, 1] for Landsat true colour); default "
+                 "[1] for elevation, [1, 2, 3] for images (or [1] for one-band files)."),
+          optionalNumber("nodata", Dimension::None, std::nullopt, std::nullopt,
+                         "Raw value meaning no data, in addition to the file's own nodata, "
+                         "alpha band or mask."),
+          wordChoice("resampling", {"nearest", "bilinear", "cubic"}, "bilinear",
+                     "Kernel for magnification (Keys cubic as in GDAL); minification always "
+                     "averages, except with nearest."),
+          number("scale", Dimension::None, 1.0, std::nullopt, std::nullopt,
+                 "Multiplies values (after the band's own scale/offset; 8-bit image bands are "
+                 "first divided by 255)."),
+          number("offset", Dimension::None, 0.0, std::nullopt, std::nullopt,
+                 "Added to values after `scale` (in the file's vertical unit for elevation)."),
+          listOf("bounds", ValueType::Number, Dimension::Angle, false,
+                 "[west, south, east, north]: places a file without georeferencing (e.g. a world "
+                 "image) on WGS84 longitude/latitude; overrides the file's own."),
+          simple("srgb", ValueType::Bool, std::nullopt,
+                 "Images: decode values from sRGB to linear (default: true for 8-bit bands, "
+                 "false otherwise). Use false for band arithmetic such as NDVI."),
+          number("fill", Dimension::Length, 0.0, -1e5, 1e5,
+                 "Elevation outside the coverage, in metres.")}});
+
+    registry.add(
+        {"source", "constant", PortType::None,
+         "One height or one colour everywhere, full coverage.",
+         {wordChoice("kind", {"elevation", "image"}, "elevation", "Elevation or image output."),
+          number("height", Dimension::Length, 0.0, -1e5, 1e5, "Elevation in metres (kind = elevation)."),
+          simple("color", ValueType::Color, grey,
+                 "Colour (sRGB as written, output in linear RGB; its alpha is the alpha).")}});
+
+    registry.add(
+        {"source", "adjust", PortType::None,
+         "Colour corrections of an image, per texel, applied to sRGB-encoded values in [0, 1] "
+         "(as image editors do) in this order: levels (black/white point), gamma, brightness, "
+         "contrast about mid grey, saturation and hue (rotation about the grey axis with "
+         "Rec. 709 luma kept); the result is clamped to [0, 1] and decoded to linear RGB. "
+         "Alpha passes through.",
+         {port("input", PortType::None, true, "Image to adjust."),
+          number("brightness", Dimension::None, 0.0, -1.0, 1.0, "Added to the encoded values."),
+          number("contrast", Dimension::None, 1.0, 0.0, 10.0, "Scale of the distance from 0.5."),
+          number("saturation", Dimension::None, 1.0, 0.0, 10.0,
+                 "Scale of the distance from the luma grey (0: greyscale)."),
+          number("hue", Dimension::Angle, 0.0, -360 * kDegree, 360 * kDegree,
+                 "Rotation of the hue about the grey axis."),
+          number("gamma", Dimension::None, 1.0, 0.05, 20.0,
+                 "Exponent 1/gamma on the encoded values (above 1 brightens mid tones)."),
+          number("black", Dimension::None, 0.0, 0.0, 1.0, "Levels: input value mapped to 0."),
+          number("white", Dimension::None, 1.0, 0.0, 1.0, "Levels: input value mapped to 1.")}});
+
+    registry.add(
+        {"source", "blend", PortType::None,
+         "Lays `over` on `base`. Weight = opacity x over's coverage (image alpha, or the "
+         "coverage of an elevation raster) x mask, where feather > 0 fades the coverage in "
+         "over about `feather` metres inside its edge (from the coverage at the pyramid level "
+         "whose texels are twice the feather, bilinearly interpolated, so the fade is the same "
+         "at every level and seamless across tiles). Images: modes normal, multiply, screen, "
+         "add, min, max in linear RGB. Elevation: replace (= normal), add, min, max, so a local "
+         "DEM merges into a global relief without a step.",
+         {port("base", PortType::None, true, "The source underneath (elevation or image)."),
+          port("over", PortType::None, true, "The source laid on top, of the same port type."),
+          port("mask", PortType::Mask, false, "Optional weight in [0, 1]."),
+          number("opacity", Dimension::Ratio, 1.0, 0.0, 1.0, "Overall weight of `over`."),
+          number("feather", Dimension::Length, 0.0, 0.0, 1e7,
+                 "Width of the fade inside the edge of over's coverage, in metres."),
+          wordChoice("mode", {"normal", "replace", "multiply", "screen", "add", "min", "max"}, "normal",
+                     "How over combines with base (elevation: normal/replace, add, min, max).")}});
+
+    registry.add(
+        {"source", "mask", PortType::Mask,
+         "A mask in [0, 1] from one to four inputs: a band expression (e.g. NDVI "
+         "`(nir - red) / (nir + red) > 0.35`), or a colour classification (1 where the "
+         "texel's nearest class colour is `select`), then morphological open/close and a "
+         "feather (box blur twice) with radii in metres, computed over the 3 x 3 neighbour "
+         "tiles so the result is seamless. Expressions: numbers, + - * / ^, unary -, "
+         "comparisons < <= > >= == != (1 or 0), and (&&), or (||), not (!), min(a, b), max(a, b), "
+         "abs(x), sqrt(x), clamp(x, lo, hi), and names: `b1`..`b4` are channels of the first "
+         "input, `<input>` its first channel, `<input>.b1`..`.b4` (or .r .g .b .a) its channels. "
+         "Division by zero gives 0. No-data texels (coverage 0) give 0.",
+         {port("input", PortType::None, true,
+               "First input (image, mask or elevation); `b1`..`b4` are its channels."),
+          port("input2", PortType::None, false, "Second input, named by its source name."),
+          port("input3", PortType::None, false, "Third input."),
+          port("input4", PortType::None, false, "Fourth input."),
+          simple("expression", ValueType::String, text(""),
+                 "The band expression; empty: `b1`, or the classification when `classes` is set."),
+          listOf("classes", ValueType::Color, Dimension::None, false,
+                 "Class colours (sRGB) for classification of the first input, compared in "
+                 "linear RGB."),
+          number("select", Dimension::None, 1, 1, 64, "The class (from 1) that gives 1."),
+          number("open", Dimension::Length, 0.0, 0.0, 1e5,
+                 "Radius of a morphological opening (erode, then dilate): removes specks."),
+          number("close", Dimension::Length, 0.0, 0.0, 1e5,
+                 "Radius of a morphological closing (dilate, then erode): fills holes."),
+          number("feather", Dimension::Length, 0.0, 0.0, 1e5, "Blur radius of the edges, in metres.")}});
 }
 
 }  // namespace

@@ -1,8 +1,13 @@
 #include "sylva/core/sources/SourceFactory.h"
 
+#include "sylva/core/sources/AdjustSource.h"
+#include "sylva/core/sources/BlendSource.h"
+#include "sylva/core/sources/ConstantSource.h"
 #include "sylva/core/sources/HypsometricSource.h"
+#include "sylva/core/sources/MaskSource.h"
 #include "sylva/core/sources/NoiseSource.h"
 #include "sylva/core/sources/NormalMapSource.h"
+#include "sylva/core/sources/RasterSource.h"
 
 namespace sylva {
 
@@ -15,6 +20,11 @@ SourceCreator findSourceCreator(std::string_view kind) {
         {"noise", &NoiseSource::create},
         {"normal_map", &NormalMapSource::create},
         {"hypsometric", &HypsometricSource::create},
+        {"raster", &RasterSource::create},
+        {"constant", &ConstantSource::create},
+        {"adjust", &AdjustSource::create},
+        {"blend", &BlendSource::create},
+        {"mask", &MaskSource::create},
     };
     for (const Entry& entry : kTable) {
         if (entry.kind == kind) {

@@ -219,14 +219,14 @@ TEST(Loader, DependencyCycle) {
 1 | source relief : smooth { input = @detail }
   |                                  ^^^^^^^ 'relief' uses 'detail' here
 note: 'detail' uses 'relief' at olinda.sylva:3:13
-  = help: cycle: relief -> detail -> relief
+  = cycle: relief -> detail -> relief
 
 error[E0301]: dependency cycle between sources
  --> olinda.sylva:5:32
   |
 5 | source self : smooth { input = @self }
   |                                ^^^^^ 'self' uses 'self' here
-  = help: cycle: self -> self
+  = cycle: self -> self
 )");
 }
 

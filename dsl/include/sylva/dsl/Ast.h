@@ -28,7 +28,11 @@ struct Expr {
         Object,
         Call,
         Unary,
-        Binary
+        Binary,
+        DateTime,     // text holds the canonical ISO form
+        Conditional,  // children: condition, then, else
+        Index,        // children: container, index
+        Field         // children: object; text: the field name
     };
     Kind kind = Kind::Number;
     SourceLocation location;  // the whole expression (one line at most for carets)
@@ -39,7 +43,9 @@ struct Expr {
     std::string field;  // Reference: part after '.', empty if none
     Color color;
     bool boolean = false;
-    char op = 0;  // Unary: '-' or '+'; Binary: '+', '-', '*', '/'
+    // Unary: '-', '+', '!'. Binary: '+', '-', '*', '/', '%', '<', '>', and for the two-
+    // character operators: 'l' <=, 'g' >=, 'e' ==, 'n' !=, '&' &&, '|' ||.
+    char op = 0;
 
     // List elements, Call arguments, Unary operand, Binary operands, Object values.
     std::vector<ExprPtr> children;
@@ -47,13 +53,24 @@ struct Expr {
     std::vector<std::pair<std::string, SourceLocation>> keys;
 };
 
+enum class AssignOp { Set, Append, Remove };  // =, +=, -=
+
 struct AttributeNode {
     std::string name;
     SourceLocation nameLocation;
     ExprPtr value;
+    AssignOp op = AssignOp::Set;
+    SourceLocation opLocation;
 };
 
-// `keyword [name] [: kind] { attributes }`
+// `override @target { attributes }` inside a scenario.
+struct OverrideNode {
+    std::string target;  // the reference as written, without '@' ("forest", "ns.forest")
+    SourceLocation targetLocation;
+    std::vector<AttributeNode> attributes;
+};
+
+// `keyword [name] [: kind] [extends parent] { attributes overrides }`
 struct BlockNode {
     std::string keyword;
     SourceLocation keywordLocation;
@@ -62,6 +79,17 @@ struct BlockNode {
     std::string kind;  // empty when not written
     SourceLocation kindLocation;
     std::vector<AttributeNode> attributes;
+    std::string extends;  // empty when not written
+    SourceLocation extendsLocation;
+    std::vector<OverrideNode> overrides;
+};
+
+// `import "path" [as namespace]`
+struct ImportNode {
+    std::string path;
+    SourceLocation pathLocation;
+    std::string alias;  // empty: the imported names merge into the importing file
+    SourceLocation aliasLocation;
 };
 
 // `param name [: type] [= default] ["doc"]`
@@ -74,7 +102,7 @@ struct ParamNode {
     std::string doc;
 };
 
-using Statement = std::variant<BlockNode, ParamNode>;
+using Statement = std::variant<BlockNode, ParamNode, ImportNode>;
 
 struct FileNode {
     std::vector<Statement> statements;  // in source order

@@ -25,6 +25,8 @@ struct Diagnostic {
     std::string label;        // text after the carets
     std::vector<DiagnosticNote> notes;
     std::vector<std::string> help;
+    // For cycles: "relief -> detail -> relief", rendered as "= cycle: ..." (DSL.md).
+    std::string cycle;
 };
 
 // Appends an error / a warning and returns it so callers can add notes and help lines.

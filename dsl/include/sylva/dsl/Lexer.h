@@ -21,12 +21,15 @@ public:
 
     // All tokens, always ending with one EndOfFile token.
     std::vector<Token> tokenize();
+    // Also emit Comment tokens (for the formatter; the parser does not accept them).
+    void keepComments(bool keep) { keepComments_ = keep; }
 
 private:
     SourceLocation locationAt(std::size_t offset, std::size_t length) const;
     void push(TokenKind kind, std::size_t start, std::size_t length);
     bool colourContext() const;
     void lexNumber();
+    bool lexDateTime();
     void lexString();
     void lexColour();
     void skipBlockComment();
@@ -39,6 +42,8 @@ private:
     std::uint32_t line_ = 1;
     std::size_t lineStart_ = 0;
     std::vector<Token> tokens_;
+    bool keepComments_ = false;
+    std::size_t lastEnd_ = 0;  // end offset of the previous token, for spaceBefore
 };
 
 }  // namespace sylva::dsl

@@ -16,6 +16,9 @@ namespace sylva::dsl {
 class Parser {
 public:
     static constexpr int kMaxNesting = 64;
+    // Elements of one list literal (E0105): keeps a hostile file from growing the AST
+    // without bound through one giant list.
+    static constexpr std::size_t kMaxListLength = 100000;
 
     // `tokens` must end with an EndOfFile token (as Lexer::tokenize produces).
     Parser(std::vector<Token> tokens, std::vector<Diagnostic>& diagnostics);
@@ -35,14 +38,16 @@ private:
     bool expectStatementEnd(std::size_t base);
 
     bool parseParam(ParamNode& param);
+    bool parseImport(ImportNode& import);
     bool parseBlock(BlockNode& block);
-    void parseBody(BlockNode& block);
+    void parseBody(BlockNode& block, bool allowOverrides);
 
     ExprPtr parseExpression(int minBindingPower = 0);
     ExprPtr parsePrefix();
     ExprPtr parseList();
     ExprPtr parseObject();
     ExprPtr parseCall();
+    ExprPtr parsePostfix(ExprPtr left);
     bool closeDelimiter(TokenKind closer, const Token& opener, Expr& node);
 
     std::vector<Token> tokens_;

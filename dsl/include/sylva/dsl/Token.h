@@ -32,17 +32,35 @@ enum class TokenKind {
     SlashDash,  // `/-`: comments out the next attribute or block
     Newline,
     EndOfFile,
+    Percent,       // `%` as the remainder operator (after a digit it is a unit)
+    EqualEqual,    // ==
+    BangEqual,     // !=
+    Less,          // <
+    LessEqual,     // <=
+    Greater,       // >
+    GreaterEqual,  // >=
+    AndAnd,        // &&
+    OrOr,          // ||
+    Bang,          // !
+    Question,      // ?
+    PlusEquals,    // +=
+    MinusEquals,   // -=
+    Dot,           // . (field access after a call or a parenthesis)
+    DateTime,      // 2024-06-21T14:30+02:00 or 14:30; text holds the canonical ISO form
+    Comment,       // only with Lexer::keepComments(): `#`, `//` or `/* */` text
 };
 
 struct Token {
     TokenKind kind = TokenKind::EndOfFile;
     std::string text;   // identifier / reference name / unescaped string / source text
-    std::string field;  // for Reference: the part after '.', empty if none
+    std::string field;  // for Reference: the part after the first '.' (may hold more dots)
     SourceLocation location;
     double number = 0.0;  // for Number: value in SI units
     Dimension dimension = Dimension::None;
     Color color;
-    bool malformed = false;  // a lexical error was reported for this token
+    bool malformed = false;    // a lexical error was reported for this token
+    bool spaceBefore = false;  // whitespace or a line start precedes the token (formatter)
+    std::size_t offset = 0;    // byte offset of the token in its text
 
     bool is(TokenKind k) const { return kind == k; }
     bool closesLine() const {

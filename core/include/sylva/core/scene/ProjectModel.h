@@ -4,6 +4,7 @@
 // errors at file:line:col. One ProjectModel describes one scenario.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -25,6 +26,9 @@ struct Block {
     std::string kind;     // for sources: "noise", "hypsometric" ...; empty otherwise
     SourceLocation location;  // of the block's name (or keyword when anonymous)
     std::vector<Attribute> attributes;
+    // Hash of kind, attributes and the hashes of referenced sources: blocks with equal
+    // hashes compute equal data, so scenarios share them. 0 when not computed.
+    std::uint64_t contentHash = 0;
 
     const Attribute* find(std::string_view attributeName) const {
         for (const Attribute& attribute : attributes) {
@@ -46,11 +50,15 @@ struct ProjectModel {
     std::vector<Block> scenarios;
     std::vector<Block> cameras;
     std::vector<Block> views;
+    std::vector<Block> compares;  // keyword "compare": two scenarios side by side
+    std::vector<Block> blends;    // keyword "blend": a mix of two scenarios
+    std::vector<Block> paths;     // keyword "path": camera animations
 
     const Block* findSource(std::string_view name) const { return findIn(sources, name); }
     const Block* findCamera(std::string_view name) const { return findIn(cameras, name); }
     const Block* findViews(std::string_view name) const { return findIn(views, name); }
     const Block* findScenario(std::string_view name) const { return findIn(scenarios, name); }
+    const Block* findPath(std::string_view name) const { return findIn(paths, name); }
 
 private:
     static const Block* findIn(const std::vector<Block>& blocks, std::string_view name) {

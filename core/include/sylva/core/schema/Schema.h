@@ -35,7 +35,8 @@ enum class ValueType {
     Word,       // one of `words`
     Reference,  // @name of a block; `port` (sources) or `target` (other blocks) says which
     List,       // of `element`
-    Object,     // { key = value } with free keys (checked by the consumer)
+    Object,     // { key = value }: free keys, or the keys listed in `fields`
+    DateTime,   // an ISO date-time or time literal (2024-06-21T14:30+02:00, 14:30)
 };
 
 struct AttributeSchema {
@@ -51,6 +52,8 @@ struct AttributeSchema {
     std::optional<Value> defaultValue;      // absent: no default
     bool required = false;
     std::string doc;
+    // For Object (and List of Object): the keys a record may hold. Empty: free keys.
+    std::vector<AttributeSchema> fields;
 };
 
 struct KindSchema {
@@ -74,9 +77,18 @@ public:
     // Source kinds in registration order, for did-you-mean and `sylva doc`.
     std::vector<std::string> sourceKinds() const;
     const std::vector<KindSchema>& all() const { return kinds_; }
+    // Mutable lookup, so later registration steps can extend a kind; nullptr if unknown.
+    KindSchema* edit(std::string_view keyword, std::string_view kind = {}) {
+        return const_cast<KindSchema*>(find(keyword, kind));
+    }
 
 private:
     std::vector<KindSchema> kinds_;
 };
+
+// Registers the blocks of the project language that are not sources (compare, blend,
+// path) and extends views/scenario with their language-level attributes. Called at the
+// end of the builtin registry's construction (schema/LanguageSchema.cpp).
+void addLanguageSchema(SchemaRegistry& registry);
 
 }  // namespace sylva
