@@ -10,5 +10,7 @@ namespace sylva::app {
 
 int runRender(const std::vector<std::string>& arguments);
 int runCheck(const std::vector<std::string>& arguments);
+int runBench(const std::vector<std::string>& arguments);
+int runTerrainBench(const std::vector<std::string>& arguments);
 
 }  // namespace sylva::app

@@ -17,6 +17,8 @@ void printUsage(std::FILE* stream) {
         "                 render the project's views to images\n"
         "  check PROJECT [-D name=value]\n"
         "                 report every problem in a project without rendering\n"
+        "  bench SUITE [--json]\n"
+        "                 run a benchmark suite (terrain)\n"
         "\n"
         "environment:\n"
         "  SYLVA_GL=egl|osmesa|glfw   OpenGL back end (default: EGL, falling back to OSMesa)\n"
@@ -38,6 +40,9 @@ int main(int argc, char** argv) {
     }
     if (command == "check") {
         return sylva::app::runCheck(arguments);
+    }
+    if (command == "bench") {
+        return sylva::app::runBench(arguments);
     }
     if (command == "--help" || command == "-h" || command == "help") {
         printUsage(stdout);
