@@ -1,6 +1,7 @@
-// `sylva bench terrain [--json] [--size WxH] [--dem N] [--gl B]`: the spherical
-// clipmap flight benchmark (render/TerrainBenchmark.h). Prints the metrics as JSON
-// with --json, else one line per metric.
+// `sylva bench terrain [--json] [--size WxH] [--dem N] [--frames N] [--gl B]
+// [--write-frames DIR]`: the spherical clipmap flight benchmark
+// (render/TerrainBenchmark.h). Prints the metrics as JSON with --json, else one line
+// per metric; --write-frames keeps the flight as a PNG sequence to look at.
 #include <cstdio>
 
 #include "CommandLine.h"
@@ -13,7 +14,7 @@ namespace sylva::app {
 
 int runTerrainBench(const std::vector<std::string>& arguments) {
     const ParsedCommandLine command =
-        parseCommandLine(arguments, {{"json", false}, {"size"}, {"dem"}, {"frames"}, {"gl"}});
+        parseCommandLine(arguments, {{"json", false}, {"size"}, {"dem"}, {"frames"}, {"gl"}, {"write-frames"}});
     if (!command.error.empty() || !command.positional.empty()) {
         reportError(command.error.empty() ? "bench terrain takes no arguments" : command.error);
         return 2;
@@ -36,6 +37,7 @@ int runTerrainBench(const std::vector<std::string>& arguments) {
     if (std::optional<std::string> frames = command.get("frames")) {
         options.framesPerSegment = std::max(1, std::atoi(frames->c_str()));
     }
+    options.framesFolder = command.get("write-frames").value_or("");
     render::ContextOptions contextOptions;
     if (std::optional<std::string> gl = command.get("gl")) {
         Result<render::GlBackend> backend = render::parseBackend(*gl);

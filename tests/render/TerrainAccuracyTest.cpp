@@ -14,6 +14,7 @@
 #include "sylva/core/base/Hash.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/sources/NormalMapSource.h"
+#include "sylva/core/terrain/ElevationQuery.h"
 #include "sylva/core/tiles/TileEvaluator.h"
 #include "sylva/render/GlContext.h"
 #include "sylva/render/SceneRenderer.h"
@@ -243,6 +244,34 @@ TEST_F(TerrainAccuracy, OneCentimetreMoveChangesTheImageOnlySlightly) {
         const Image second = render(b, 160, 90, true);
         ASSERT_EQ(first.pixels.size(), second.pixels.size());
         EXPECT_LT(rmse(first, second), 1.5) << test.name;
+    }
+}
+
+// The CPU elevation query gives the ground the GPU draws: a camera placed at 1.7 m
+// above ElevationQuery::groundHeight and looking straight down sees the ground at
+// 1.7 m (to a centimetre), anywhere, and the query is close to the true surface.
+TEST_F(TerrainAccuracy, ElevationQueryMatchesTheDrawnGround) {
+    for (const auto& [latitude, longitude] : {std::pair{45.0, 7.0}, std::pair{-33.3, -70.1}, std::pair{89.9999, 10.0},
+                                               std::pair{1.0, 179.99999}}) {
+        Camera c = camera(latitude, longitude, 1.7, 0.0, -90.0);
+        const ElevationQuery query(*elevation_, *evaluator_);
+        const LevelRange levels = renderer_->terrain().visibleLevels(c, 1.7, 90);
+        Result<double> ground = query.groundHeight(c.geodetic.latitude, c.geodetic.longitude, levels.finest);
+        ASSERT_TRUE(ground) << ground.error().message;
+        EXPECT_NEAR(ground.value(), analyticHeight(c.geodetic.latitude, c.geodetic.longitude), 0.05);
+        c.geodetic.height = ground.value() + 1.7;
+        c.position = Ellipsoid::toEcef(c.geodetic);
+        const Image image = render(c, 160, 90, false);
+        ASSERT_FALSE(image.pixels.empty());
+        const std::vector<float> depth = renderer_->depth();
+        // The four pixels around the image centre straddle the view axis.
+        double distance = 0;
+        for (int y : {44, 45}) {
+            for (int x : {79, 80}) {
+                distance += renderer_->near() / depth[std::size_t(y) * 160 + x] / 4;
+            }
+        }
+        EXPECT_NEAR(distance, 1.7, 0.01) << latitude << " " << longitude;
     }
 }
 

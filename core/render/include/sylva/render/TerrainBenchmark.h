@@ -21,6 +21,7 @@ struct TerrainBenchmarkOptions {
     double demDegrees = 4.0;      // side of the DEM, degrees of latitude and longitude
     int framesPerSegment = 6;     // frames between successive altitudes of the flight
     int bruteForceFrames = 5;     // brute-force frames sampled along the flight
+    std::string framesFolder;     // if set, each clipmap frame is written there as flight_NNN.png
 };
 
 struct TerrainBenchmarkResult {
