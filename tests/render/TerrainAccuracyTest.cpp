@@ -35,19 +35,23 @@ double analyticHeight(double latitude, double longitude) {
 
 class AnalyticElevation final : public Source {
 public:
-    AnalyticElevation() : Source("analytic", "test", PortType::Elevation, 1) {
-        setParameterHash(ContentHash().add(std::string_view("analytic-v1")).value());
+    explicit AnalyticElevation(double offset = 0.0) : Source("analytic", "test", PortType::Elevation, 1), offset_(offset) {
+        setParameterHash(ContentHash().add(std::string_view("analytic-v1")).add(offset).value());
     }
     Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override {
         const TileFormat& format = provider.format();
         auto tile = std::make_shared<ImageTile>(key, format.size, format.border, 1);
         for (int iy = -format.border; iy < format.size + format.border; ++iy) {
             for (int ix = -format.border; ix < format.size + format.border; ++ix) {
-                tile->at(ix, iy, 0) = float(analyticHeight(tile->texelLatitude(iy), tile->texelLongitude(ix)));
+                tile->at(ix, iy, 0) =
+                    float(analyticHeight(tile->texelLatitude(iy), tile->texelLongitude(ix)) + offset_);
             }
         }
         return TilePointer(tile);
     }
+
+private:
+    double offset_;
 };
 
 // Distance along `direction` (unit, ECEF) from `origin` to the analytic surface, or
@@ -245,6 +249,23 @@ TEST_F(TerrainAccuracy, OneCentimetreMoveChangesTheImageOnlySlightly) {
         ASSERT_EQ(first.pixels.size(), second.pixels.size());
         EXPECT_LT(rmse(first, second), 1.5) << test.name;
     }
+    // On an 8,000 m high plateau the same holds (heights add to the float offsets).
+    AnalyticElevation high(7600.0);
+    NormalMapSource highNormals("high.normals", &high, 1.0);
+    Camera a = camera(27.98, 86.92, 1.7 + 7600.0, 200.0, -6.0);
+    Camera b = a;
+    b.position += a.axes[0] * 0.01;
+    b.geodetic = Ellipsoid::toGeodetic(b.position);
+    RenderSettings settings;
+    settings.width = 160;
+    settings.height = 90;
+    settings.sunDirection = glm::normalize(a.position + a.axes[0] * 3.0e6 + a.axes[1] * 6.0e6);
+    settings.ocean = false;
+    const TerrainLayers layers{&high, nullptr, &highNormals};
+    Result<Image> first = renderer_->render(layers, *evaluator_, a, settings);
+    Result<Image> second = renderer_->render(layers, *evaluator_, b, settings);
+    ASSERT_TRUE(first && second);
+    EXPECT_LT(rmse(first.value(), second.value()), 1.5) << "8,000 m plateau";
 }
 
 // The CPU elevation query gives the ground the GPU draws: a camera placed at 1.7 m
