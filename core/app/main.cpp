@@ -25,7 +25,7 @@ void printUsage(std::FILE* stream) {
         "  doc [KIND] [--markdown] [--update FILE]\n"
         "                 the language reference from the schema registry\n"
         "  bench SUITE [--json]\n"
-        "                 run a benchmark suite (dsl)\n"
+        "                 run a benchmark suite (dsl, terrain)\n"
         "\n"
         "environment:\n"
         "  SYLVA_GL=egl|osmesa|glfw   OpenGL back end (default: EGL, falling back to OSMesa)\n"

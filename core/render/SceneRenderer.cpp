@@ -107,7 +107,11 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     gbuffer_.clearColor(0, glm::vec4(0.0f));
     gbuffer_.clearColor(1, glm::vec4(0.0f));
     gbuffer_.clearDepth(0.0f);  // reversed-Z: 0 is infinitely far
+    const auto terrainStart = std::chrono::steady_clock::now();
     terrain_->draw(camera, projection, levels, settings.ocean);
+    glFinish();  // only to time the pass; the read-back below waits anyway
+    statistics_.terrainPassSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - terrainStart).count();
     ShadingSettings shading;
     shading.sunDirection = settings.sunDirection;
     shading.atmosphere = settings.atmosphere;

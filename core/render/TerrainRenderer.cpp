@@ -108,13 +108,18 @@ Result<LevelRange> TerrainRenderer::update(const TerrainLayers& layers, TileProv
     const double longitude = camera.geodetic.longitude;
     const int size = settings_.clipmapSize;
     hasColor_ = layers.color != nullptr;
-    // A different colour source means different texels under the same windows.
-    const std::uint64_t colorHash = hasColor_ ? layers.color->contentHash() : 0;
-    if (colorHash != colorSourceHash_) {
-        for (int level = 0; level < color_->levelCount(); ++level) {
-            color_->invalidate(level);
+    // A different source (another scenario, an edited parameter) means different
+    // texels under the same windows: drop that layer's levels.
+    const std::uint64_t hashes[3] = {layers.elevation->contentHash(), layers.normals->contentHash(),
+                                     hasColor_ ? layers.color->contentHash() : 0};
+    Clipmap* clipmaps[3] = {height_.get(), normals_.get(), color_.get()};
+    for (int layer = 0; layer < 3; ++layer) {
+        if (hashes[layer] != sourceHashes_[layer]) {
+            for (int level = 0; level < clipmaps[layer]->levelCount(); ++level) {
+                clipmaps[layer]->invalidate(level);
+            }
+            sourceHashes_[layer] = hashes[layer];
         }
-        colorSourceHash_ = colorHash;
     }
     struct Layer {
         Clipmap* clipmap;

@@ -1,5 +1,6 @@
-// Golden images of the demo project's three views (space, aircraft, ground) at
-// 320x180 on llvmpipe, plus a hole test against an analytic ray cast.
+// Golden images at 320x180 on llvmpipe: the demo project's three views (space,
+// aircraft, ground) and the extremes fixtures (poles, antimeridian), plus a hole test
+// against an analytic ray cast of the ellipsoid.
 //
 // Compared by RMSE and maximum channel error (llvmpipe is deterministic on one Mesa
 // version; the tolerance absorbs small driver changes). On failure the actual image
@@ -59,13 +60,14 @@ Comparison compare(const std::vector<std::uint8_t>& a, const std::vector<std::ui
     return result;
 }
 
-class DemoGolden : public ::testing::Test {
+class ProjectGolden : public ::testing::Test {
 protected:
-    static void SetUpTestSuite() {
+    static void open(const std::string& projectPath, const std::string& goldenPrefix) {
+        prefix_ = goldenPrefix;
         Result<std::unique_ptr<GlContext>> created = GlContext::create({});
         ASSERT_TRUE(created) << created.error().message;
         context_ = std::move(created.value()).release();
-        dsl::LoadResult loaded = dsl::loadProject(std::string(SYLVA_PROJECTS_DIR) + "/demo/demo.sylva");
+        dsl::LoadResult loaded = dsl::loadProject(projectPath);
         ASSERT_FALSE(loaded.hasErrors()) << loaded.render();
         model_ = new ProjectModel(std::move(*loaded.model));
         Result<SourceGraph> graph = SourceGraph::build(*model_);
@@ -79,7 +81,7 @@ protected:
         ASSERT_TRUE(renderer) << renderer.error().message;
         renderer_ = renderer.value().release();
     }
-    static void TearDownTestSuite() {
+    static void close() {
         delete renderer_;
         delete evaluator_;
         delete graph_;
@@ -96,6 +98,8 @@ protected:
         const GeoPosition sun = *block.geo("sun");
         settings.sunDirection = Ellipsoid::surfaceNormal(sun.latitude, sun.longitude);
         settings.exposure = *block.optionalNumber("exposure");
+        settings.ocean = block.boolean("ocean", true);
+        settings.atmosphere = block.boolean("atmosphere", true);
         const Block* cameraBlock = model_->findCamera(name);
         EXPECT_NE(cameraBlock, nullptr);
         const ElevationQuery query(*layers_.elevation, *evaluator_);
@@ -117,7 +121,7 @@ protected:
         const Image image = render(name);
         ASSERT_EQ(image.pixels.size(), std::size_t(kWidth) * kHeight * 4);
         const std::filesystem::path golden =
-            std::filesystem::path(SYLVA_TEST_DATA_DIR) / "render" / "goldens" / ("demo_" + name + ".png");
+            std::filesystem::path(SYLVA_TEST_DATA_DIR) / "render" / "goldens" / (prefix_ + name + ".png");
         const std::filesystem::path outputs = std::filesystem::path(SYLVA_TEST_OUTPUT_DIR);
         const char* update = std::getenv("SYLVA_UPDATE_GOLDENS");
         if (update != nullptr && std::string(update) == "1") {
@@ -133,37 +137,17 @@ protected:
         const Comparison c = compare(image.pixels, expected.value(), &difference);
         const bool ok = c.rmse <= 2.0 && c.maxError <= 96;
         if (!ok) {
-            (void)ImageWriter::writeRgba8(outputs / ("demo_" + name + ".actual.png"), kWidth, kHeight, image.pixels);
-            (void)ImageWriter::writeRgba8(outputs / ("demo_" + name + ".diff.png"), kWidth, kHeight, difference);
+            (void)ImageWriter::writeRgba8(outputs / (prefix_ + name + ".actual.png"), kWidth, kHeight, image.pixels);
+            (void)ImageWriter::writeRgba8(outputs / (prefix_ + name + ".diff.png"), kWidth, kHeight, difference);
         }
         EXPECT_TRUE(ok) << name << ": RMSE " << c.rmse << " (limit 2.0), max error " << c.maxError
                         << " (limit 96); actual and diff written to " << outputs;
     }
 
-    static GlContext* context_;
-    static ProjectModel* model_;
-    static SourceGraph* graph_;
-    static TerrainLayers layers_;
-    static TileEvaluator* evaluator_;
-    static SceneRenderer* renderer_;
-};
-
-GlContext* DemoGolden::context_ = nullptr;
-ProjectModel* DemoGolden::model_ = nullptr;
-SourceGraph* DemoGolden::graph_ = nullptr;
-TerrainLayers DemoGolden::layers_;
-TileEvaluator* DemoGolden::evaluator_ = nullptr;
-SceneRenderer* DemoGolden::renderer_ = nullptr;
-
-TEST_F(DemoGolden, Space) { checkGolden("space"); }
-TEST_F(DemoGolden, Aircraft) { checkGolden("aircraft"); }
-TEST_F(DemoGolden, Ground) { checkGolden("ground"); }
-
-// No holes: every pixel whose ray hits the ellipsoid (shrunk by 2 km, more than the
-// deepest chord of the coarsest drawn ring) must show terrain, from space and from
-// the aircraft. Catches cracks between levels and missing rings.
-TEST_F(DemoGolden, NoHolesWhereTheRayHitsTheEarth) {
-    for (const std::string name : {"space", "aircraft"}) {
+    // No holes: every pixel whose ray hits the ellipsoid (shrunk by 2 km, more than
+    // the deepest chord of the coarsest drawn ring) must show terrain. Catches
+    // cracks between levels and missing rings.
+    static void checkNoHoles(const std::string& name) {
         Camera camera;
         const Image image = render(name, &camera);
         ASSERT_FALSE(image.pixels.empty());
@@ -178,7 +162,7 @@ TEST_F(DemoGolden, NoHolesWhereTheRayHitsTheEarth) {
                 const double ndcX = (x + 0.5) / kWidth * 2 - 1;
                 const double ndcY = 1 - (y + 0.5) / kHeight * 2;
                 const glm::dvec3 view(ndcX * tanHalf * aspect, ndcY * tanHalf, -1.0);
-                glm::dvec3 direction = glm::normalize(camera.axes * view);
+                const glm::dvec3 direction = glm::normalize(camera.axes * view);
                 // Scale z so the ellipsoid becomes a sphere of radius a.
                 const glm::dvec3 o(camera.position.x, camera.position.y, camera.position.z * a / b);
                 const glm::dvec3 d = glm::normalize(glm::dvec3(direction.x, direction.y, direction.z * a / b));
@@ -195,7 +179,60 @@ TEST_F(DemoGolden, NoHolesWhereTheRayHitsTheEarth) {
         EXPECT_GT(hits, kWidth * kHeight / 4) << name;
         EXPECT_EQ(holes, 0) << name << ": " << holes << " of " << hits << " pixels show no terrain";
     }
-}
+
+    static std::string prefix_;
+    static GlContext* context_;
+    static ProjectModel* model_;
+    static SourceGraph* graph_;
+    static TerrainLayers layers_;
+    static TileEvaluator* evaluator_;
+    static SceneRenderer* renderer_;
+};
+
+std::string ProjectGolden::prefix_;
+GlContext* ProjectGolden::context_ = nullptr;
+ProjectModel* ProjectGolden::model_ = nullptr;
+SourceGraph* ProjectGolden::graph_ = nullptr;
+TerrainLayers ProjectGolden::layers_;
+TileEvaluator* ProjectGolden::evaluator_ = nullptr;
+SceneRenderer* ProjectGolden::renderer_ = nullptr;
+
+class DemoGolden : public ProjectGolden {
+protected:
+    static void SetUpTestSuite() { open(std::string(SYLVA_PROJECTS_DIR) + "/demo/demo.sylva", "demo_"); }
+    static void TearDownTestSuite() { close(); }
+};
+
+class NorthGolden : public ProjectGolden {
+protected:
+    static void SetUpTestSuite() {
+        open(std::string(SYLVA_TEST_DATA_DIR) + "/render/golden/extremes_north.sylva", "extremes_");
+    }
+    static void TearDownTestSuite() { close(); }
+};
+
+class SouthGolden : public ProjectGolden {
+protected:
+    static void SetUpTestSuite() {
+        open(std::string(SYLVA_TEST_DATA_DIR) + "/render/golden/extremes_south.sylva", "extremes_");
+    }
+    static void TearDownTestSuite() { close(); }
+};
+
+TEST_F(DemoGolden, Space) { checkGolden("space"); }
+TEST_F(DemoGolden, Aircraft) { checkGolden("aircraft"); }
+TEST_F(DemoGolden, Ground) { checkGolden("ground"); }
+
+TEST_F(DemoGolden, NoHolesFromSpace) { checkNoHoles("space"); }
+TEST_F(DemoGolden, NoHolesFromTheAircraft) { checkNoHoles("aircraft"); }
+
+TEST_F(NorthGolden, NorthPoleGround) { checkGolden("north_pole_ground"); }
+TEST_F(NorthGolden, AntimeridianGround) { checkGolden("antimeridian_ground"); }
+TEST_F(NorthGolden, AntimeridianSpace) { checkGolden("antimeridian_space"); }
+TEST_F(NorthGolden, NoHolesAcrossTheAntimeridian) { checkNoHoles("antimeridian_space"); }
+TEST_F(SouthGolden, SouthPoleGround) { checkGolden("south_pole_ground"); }
+TEST_F(SouthGolden, SouthPoleAircraft) { checkGolden("south_pole_aircraft"); }
+TEST_F(SouthGolden, NoHolesOverTheSouthPole) { checkNoHoles("south_pole_aircraft"); }
 
 }  // namespace
 }  // namespace sylva::render

@@ -41,6 +41,7 @@ struct RenderStatistics {
     TerrainFrameStatistics terrain;
     double heightAboveTerrain = 0;  // metres
     double gpuSeconds = 0;          // draw + shade + read-back
+    double terrainPassSeconds = 0;  // the terrain's G-buffer pass alone (to glFinish)
 };
 
 class SceneRenderer {

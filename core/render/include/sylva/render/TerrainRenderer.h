@@ -97,7 +97,7 @@ private:
     ClipmapTexture heightTexture_;
     ClipmapTexture colorTexture_;
     ClipmapTexture normalTexture_;
-    std::uint64_t colorSourceHash_ = 0;
+    std::uint64_t sourceHashes_[3] = {0, 0, 0};  // height, normals, colour sources of the clipmaps
     bool hasColor_ = false;
     TerrainFrameStatistics statistics_;
     std::uint64_t uploadedBefore_ = 0;

@@ -1,0 +1,73 @@
+// `sylva bench terrain [--json] [--size WxH] [--dem N] [--frames N] [--gl B]
+// [--write-frames DIR]`: the spherical clipmap flight benchmark
+// (render/TerrainBenchmark.h). Prints the metrics as JSON with --json, else one line
+// per metric; --write-frames keeps the flight as a PNG sequence to look at.
+#include <cstdio>
+
+#include "CommandLine.h"
+#include "Commands.h"
+#include "ProjectSession.h"
+#include "sylva/render/GlContext.h"
+#include "sylva/render/TerrainBenchmark.h"
+
+namespace sylva::app {
+
+int runTerrainBench(const std::vector<std::string>& arguments) {
+    const ParsedCommandLine command =
+        parseCommandLine(arguments, {{"json", false}, {"size"}, {"dem"}, {"frames"}, {"gl"}, {"write-frames"}});
+    if (!command.error.empty() || !command.positional.empty()) {
+        reportError(command.error.empty() ? "bench terrain takes no arguments" : command.error);
+        return 2;
+    }
+    render::TerrainBenchmarkOptions options;
+    if (std::optional<std::string> size = command.get("size")) {
+        if (std::sscanf(size->c_str(), "%dx%d", &options.width, &options.height) != 2 || options.width < 16 ||
+            options.height < 16) {
+            reportError("--size expects WIDTHxHEIGHT");
+            return 2;
+        }
+    }
+    if (std::optional<std::string> dem = command.get("dem")) {
+        options.demSamples = std::atoi(dem->c_str());
+        if (options.demSamples < 16 || options.demSamples > 8192) {
+            reportError("--dem expects a sample count per side within 16..8192");
+            return 2;
+        }
+    }
+    if (std::optional<std::string> frames = command.get("frames")) {
+        options.framesPerSegment = std::max(1, std::atoi(frames->c_str()));
+    }
+    options.framesFolder = command.get("write-frames").value_or("");
+    render::ContextOptions contextOptions;
+    if (std::optional<std::string> gl = command.get("gl")) {
+        Result<render::GlBackend> backend = render::parseBackend(*gl);
+        if (!backend) {
+            reportError("--gl: " + backend.error().message);
+            return 2;
+        }
+        contextOptions.backend = backend.value();
+    }
+    Result<std::unique_ptr<render::GlContext>> context = render::GlContext::create(contextOptions);
+    if (!context) {
+        reportError(context.error().message);
+        return 1;
+    }
+    Result<render::TerrainBenchmarkResult> result = render::runTerrainBenchmark(render::ShaderLibrary(), options);
+    if (!result) {
+        reportError(result.error().message);
+        return 1;
+    }
+    if (command.has("json")) {
+        std::puts(result->json().c_str());
+    } else {
+        for (const auto& [key, value] : result->metrics) {
+            std::printf("%-32s %.6g\n", key.c_str(), value);
+        }
+        for (const auto& [altitude, levels] : result->levelsPerAltitude) {
+            std::printf("levels at %10.0f m: %d-%d\n", altitude, levels.first, levels.second);
+        }
+    }
+    return 0;
+}
+
+}  // namespace sylva::app

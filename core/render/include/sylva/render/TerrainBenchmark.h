@@ -1,0 +1,36 @@
+// TerrainBenchmark: `sylva bench terrain`. A scripted flight from 800 km down to 50 m
+// (the altitudes of seed 001 Table 4.1) over a DEM, rendered by the spherical
+// clipmap at 1280x720, against a brute-force full-resolution grid mesh of the same
+// DEM, and the same flight over a DEM with 16x the samples (triangles must not grow).
+// Needs a current GL 4.5 context.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "sylva/core/base/Result.h"
+#include "sylva/render/ShaderLibrary.h"
+
+namespace sylva::render {
+
+struct TerrainBenchmarkOptions {
+    int width = 1280;
+    int height = 720;
+    int demSamples = 4096;        // per side of the base DEM
+    double demDegrees = 4.0;      // side of the DEM, degrees of latitude and longitude
+    int framesPerSegment = 6;     // frames between successive altitudes of the flight
+    int bruteForceFrames = 5;     // brute-force frames sampled along the flight
+    std::string framesFolder;     // if set, each clipmap frame is written there as flight_NNN.png
+};
+
+struct TerrainBenchmarkResult {
+    std::map<std::string, double> metrics;
+    std::vector<std::pair<double, std::pair<int, int>>> levelsPerAltitude;  // altitude -> (coarsest, finest)
+    std::string json() const;  // {"suite":"terrain","metrics":{...},"levels_rendered":[...]}
+};
+
+Result<TerrainBenchmarkResult> runTerrainBenchmark(const ShaderLibrary& library,
+                                                   const TerrainBenchmarkOptions& options);
+
+}  // namespace sylva::render
