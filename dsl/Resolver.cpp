@@ -8,6 +8,7 @@
 #include <set>
 #include <utility>
 
+#include "sylva/core/geo/ProjectedCoordinates.h"
 #include "sylva/dsl/EditDistance.h"
 #include "sylva/dsl/ModelHash.h"
 
@@ -283,7 +284,21 @@ std::vector<ProjectModel> Resolver::resolve(const std::vector<ParsedUnit>& units
 
     ProjectModel model;
     model.file = path;
+    // The project block first: its `crs` is needed to read positions written in
+    // projected coordinates anywhere else.
+    std::vector<const BlockEntry*> ordered;
     for (const BlockEntry& entry : blocks_) {
+        if (entry.node->keyword == "project") {
+            ordered.push_back(&entry);
+        }
+    }
+    for (const BlockEntry& entry : blocks_) {
+        if (entry.node->keyword != "project") {
+            ordered.push_back(&entry);
+        }
+    }
+    for (const BlockEntry* orderedEntry : ordered) {
+        const BlockEntry& entry = *orderedEntry;
         if (entry.node->keyword == "scenario") {
             continue;  // after all other blocks: scenarios inherit from each other
         }
@@ -310,6 +325,18 @@ std::vector<ProjectModel> Resolver::resolve(const std::vector<ParsedUnit>& units
             model.paths.push_back(std::move(*block));
         } else if (keyword == "project") {
             model.project = std::move(*block);
+            if (const Attribute* crs = model.project.find("crs")) {
+                const std::string* text = crs->value.get<std::string>();
+                if (text != nullptr && !text->empty()) {
+                    if (Status valid = ProjectedCoordinates::validate(*text); !valid) {
+                        projectCrsInvalid_ = true;  // reported once, here
+                        addError(diagnostics_, "E0414", valid.error().message, crs->value.location,
+                                 "not a coordinate reference system GDAL/PROJ can convert to WGS84");
+                    } else {
+                        projectCrs_ = crs->value;
+                    }
+                }
+            }
         } else if (keyword == "render") {
             model.render = std::move(*block);
         }
@@ -1608,8 +1635,49 @@ std::optional<Value> Resolver::coerce(Value value, const AttributeSchema& schema
             return value.get<std::string>() ? std::optional<Value>(std::move(value)) : wrongType();
         case ValueType::Color:
             return value.get<Color>() ? std::optional<Value>(std::move(value)) : wrongType();
-        case ValueType::Geo:
-            return value.get<GeoPosition>() ? std::optional<Value>(std::move(value)) : wrongType();
+        case ValueType::Geo: {
+            if (value.get<GeoPosition>()) {
+                return value;
+            }
+            // [x, y] or [x, y, height] lengths: a position in the project's CRS.
+            const ValueList* list = value.get<ValueList>();
+            const auto isLength = [](const Value& element) {
+                const Quantity* q = element.get<Quantity>();
+                return q != nullptr && q->dimension == Dimension::Length;
+            };
+            if (list == nullptr || (list->size() != 2 && list->size() != 3) ||
+                !std::all_of(list->begin(), list->end(), isLength)) {
+                return wrongType();
+            }
+            if (!projectCrs_ && projectCrsInvalid_) {
+                return std::nullopt;  // the bad CRS itself is the error
+            }
+            if (!projectCrs_) {
+                Diagnostic& diagnostic =
+                    addError(diagnostics_, "E0413", "position in projected coordinates without a project CRS",
+                             value.location, what + " is written as [x, y] lengths");
+                diagnostic.help.push_back(
+                    "declare the CRS, e.g. project { crs = \"EPSG:31985\" }, or write geo(lat, lon)");
+                return std::nullopt;
+            }
+            const std::string& crs = *projectCrs_->get<std::string>();
+            Result<GeodeticPoint> point = ProjectedCoordinates::toGeodetic(
+                crs, (*list)[0].get<Quantity>()->value, (*list)[1].get<Quantity>()->value);
+            if (!point) {
+                Diagnostic& diagnostic = addError(diagnostics_, "E0414", point.error().message, value.location,
+                                                  "outside what '" + crs + "' can convert");
+                diagnostic.notes.push_back({"the project CRS is declared here", projectCrs_->location});
+                return std::nullopt;
+            }
+            GeoPosition position{point->latitude, point->longitude, std::nullopt};
+            if (list->size() == 3) {
+                position.height = (*list)[2].get<Quantity>()->value;
+            }
+            Value converted;
+            converted.data = position;
+            converted.location = value.location;
+            return converted;
+        }
         case ValueType::DateTime: {
             const std::string* text = value.get<std::string>();
             if (!text || !isCanonicalDateTime(*text)) {

@@ -126,7 +126,11 @@ SchemaRegistry makeBuiltin() {
 
     registry.add({"project", "", PortType::None, "Project-wide settings.",
                   {simple("title", ValueType::String, text(""), "Title shown in outputs."),
-                   simple("description", ValueType::String, text(""), "Free text.")}});
+                   simple("description", ValueType::String, text(""), "Free text."),
+                   simple("crs", ValueType::String, text(""),
+                          "Coordinate reference system for positions written as [x, y] or [x, y, "
+                          "height] lengths instead of geo(...), e.g. \"EPSG:31985\" (UTM zone 25S); "
+                          "any definition GDAL/PROJ accepts. Empty: only geo() positions.")}});
 
     registry.add(
         {"source", "noise", PortType::Elevation,

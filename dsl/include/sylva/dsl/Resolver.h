@@ -130,6 +130,8 @@ private:
     std::map<std::string, std::size_t, std::less<>> names_;
     std::vector<BlockEntry> blocks_;  // to check, in order
     const BlockNode* project_ = nullptr;
+    std::optional<Value> projectCrs_;  // project { crs = "..." }, once checked and valid
+    bool projectCrsInvalid_ = false;   // a crs was written but cannot be used (already reported)
     const BlockNode* render_ = nullptr;
     std::vector<std::unique_ptr<BlockNode>> implicit_;  // project/render the files omit
     std::filesystem::path rootDirectory_;               // of the project file, for rebasePath
