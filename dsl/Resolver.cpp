@@ -8,6 +8,7 @@
 #include <set>
 #include <utility>
 
+#include "sylva/core/geo/Geodesy.h"
 #include "sylva/core/geo/ProjectedCoordinates.h"
 #include "sylva/dsl/EditDistance.h"
 #include "sylva/dsl/ModelHash.h"
@@ -1369,8 +1370,9 @@ std::optional<double> Resolver::coerceAngle(const Value& value, const std::strin
 }
 
 std::optional<Value> Resolver::evaluateCall(const Expr& expr) {
-    static const std::vector<std::string> kFunctions = {"geo",         "min",  "max",  "clamp",
-                                                        "interpolate", "step", "match"};
+    static const std::vector<std::string> kFunctions = {"geo",   "min",         "max",  "clamp",
+                                                        "interpolate", "step", "match", "distance",
+                                                        "destination"};
     if (std::find(kFunctions.begin(), kFunctions.end(), expr.text) == kFunctions.end()) {
         Diagnostic& diagnostic =
             addError(diagnostics_, "E0211", "unknown function '" + expr.text + "'", expr.location,
@@ -1408,6 +1410,10 @@ std::optional<Value> Resolver::evaluateCall(const Expr& expr) {
         countOk = arity(count >= 2 && count % 2 == 0, "x, y0, x1, y1, ...");
     } else if (expr.text == "match") {
         countOk = arity(count >= 4 && count % 2 == 0, "value, key1, result1, ..., default");
+    } else if (expr.text == "distance") {
+        countOk = arity(count == 2, "from, to");
+    } else if (expr.text == "destination") {
+        countOk = arity(count == 3, "from, bearing, distance");
     }
     if (!countOk) {
         return std::nullopt;
@@ -1427,6 +1433,46 @@ std::optional<Value> Resolver::evaluateCall(const Expr& expr) {
     }
     if (expr.text == "geo") {
         return evaluateGeo(expr, std::move(arguments));
+    }
+    if (expr.text == "distance" || expr.text == "destination") {
+        // Geodesics on WGS84 (GeographicLib): distance(a, b) in metres;
+        // destination(from, bearing, distance) keeps from's height.
+        const GeoPosition* from = arguments[0].get<GeoPosition>();
+        if (!from) {
+            addError(diagnostics_, "E0402", "expected geo position, found " + arguments[0].typeName(),
+                     arguments[0].location, expr.text + "() starts at a geo position");
+            return std::nullopt;
+        }
+        Value result;
+        result.location = expr.location;
+        if (expr.text == "distance") {
+            const GeoPosition* to = arguments[1].get<GeoPosition>();
+            if (!to) {
+                addError(diagnostics_, "E0402", "expected geo position, found " + arguments[1].typeName(),
+                         arguments[1].location, "distance() measures between two geo positions");
+                return std::nullopt;
+            }
+            result.data = Quantity{Geodesy::distance(from->latitude, from->longitude, to->latitude, to->longitude),
+                                   Dimension::Length};
+            return result;
+        }
+        const Quantity* bearing = arguments[1].get<Quantity>();
+        const Quantity* length = arguments[2].get<Quantity>();
+        if (!bearing || bearing->dimension != Dimension::Angle) {
+            addError(diagnostics_, "E0403", "expected angle, found " + arguments[1].typeName(), arguments[1].location,
+                     "the bearing of destination() must be an angle");
+            return std::nullopt;
+        }
+        if (!length || length->dimension != Dimension::Length) {
+            addError(diagnostics_, "E0403", "expected length, found " + arguments[2].typeName(), arguments[2].location,
+                     "the distance of destination() must be a length");
+            return std::nullopt;
+        }
+        GeoPosition reached = *from;
+        Geodesy::destination(from->latitude, from->longitude, bearing->value, length->value, reached.latitude,
+                             reached.longitude);
+        result.data = reached;
+        return result;
     }
     if (expr.text == "match") {
         std::string key = canonicalText(arguments[0]);

@@ -308,7 +308,7 @@ TEST(DiagnosticGolden, UnknownFunction) {
 1 | camera c { position = gep(1deg, 2deg) }
   |                       ^^^^^^^^^^^^^^^ not a function
   = help: did you mean 'geo'?
-  = help: functions are: geo, min, max, clamp, interpolate, step, match
+  = help: functions are: geo, min, max, clamp, interpolate, step, match, distance, destination
 )SYLVA");
 }
 
