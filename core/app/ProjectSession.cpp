@@ -27,6 +27,7 @@ std::optional<ProjectSession> ProjectSession::open(const std::filesystem::path& 
     }
     ProjectSession session;
     session.model = std::move(*loaded.model);
+    session.scenarios = std::move(loaded.scenarios);
     Result<SourceGraph> graph = SourceGraph::build(session.model);
     if (!graph) {
         reportError(graph.error().message);
@@ -34,6 +35,27 @@ std::optional<ProjectSession> ProjectSession::open(const std::filesystem::path& 
     }
     session.graph.emplace(std::move(graph.value()));
     return session;
+}
+
+Result<std::pair<const ProjectModel*, SourceGraph*>> ProjectSession::forScenario(const std::string& scenario) {
+    const ProjectModel* scenarioModel = nullptr;
+    for (const ProjectModel& candidate : scenarios) {
+        if (candidate.scenario == scenario) {
+            scenarioModel = &candidate;
+        }
+    }
+    if (scenario.empty() || scenarioModel == nullptr || scenarioModel == &scenarios.front()) {
+        return std::make_pair(static_cast<const ProjectModel*>(&model), &*graph);
+    }
+    auto it = scenarioGraphs.find(scenario);
+    if (it == scenarioGraphs.end()) {
+        Result<SourceGraph> built = SourceGraph::build(*scenarioModel);
+        if (!built) {
+            return built.error();
+        }
+        it = scenarioGraphs.emplace(scenario, std::move(built.value())).first;
+    }
+    return std::make_pair(scenarioModel, &it->second);
 }
 
 }  // namespace sylva::app

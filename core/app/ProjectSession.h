@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -14,10 +15,19 @@
 namespace sylva::app {
 
 struct ProjectSession {
-    ProjectModel model;
-    std::optional<SourceGraph> graph;
+    ProjectModel model;                  // the first (default) scenario's model
+    std::optional<SourceGraph> graph;    // its source graph
+    std::vector<ProjectModel> scenarios;  // one model per scenario (overrides applied)
+
+    // The model and source graph of `scenario` (the default ones when empty or when the
+    // project has no scenarios); graphs are built on first use. Sources with equal
+    // content hashes share tiles in the TileEvaluator, so only overridden branches
+    // are computed again.
+    Result<std::pair<const ProjectModel*, SourceGraph*>> forScenario(const std::string& scenario);
 
     // nullopt after printing the reasons when the project has errors.
+    std::map<std::string, SourceGraph> scenarioGraphs;
+
     static std::optional<ProjectSession> open(const std::filesystem::path& file,
                                               const std::vector<std::pair<std::string, std::string>>& defines);
 };

@@ -216,7 +216,15 @@ int runRender(const std::vector<std::string>& arguments) {
     for (const Job& job : jobs) {
         const auto start = std::chrono::steady_clock::now();
         const std::size_t tilesBefore = evaluator.statistics().misses;
-        Result<TerrainLayers> layers = session->graph->terrainLayers(model, job.scenario);
+        // Each scenario renders its own model (overrides applied); unchanged sources
+        // keep their content hashes, so their tiles come from the shared cache.
+        Result<std::pair<const ProjectModel*, SourceGraph*>> scenario = session->forScenario(job.scenario);
+        if (!scenario) {
+            reportError(scenario.error().message);
+            ++failures;
+            continue;
+        }
+        Result<TerrainLayers> layers = scenario->second->terrainLayers(*scenario->first, job.scenario);
         if (!layers) {
             reportError(layers.error().message);
             ++failures;

@@ -204,6 +204,16 @@ leftovers=$(find "$SCRATCH/tiny" -name '.sylva-*' -print)
 [ "$(find "$SCRATCH/tiny" -type f | wc -l)" -eq 1 ] || fail "unexpected files: $(ls -A "$SCRATCH/tiny")"
 end
 
+begin "each scenario renders its own model"
+run render "$PROJECTS/scenarios.sylva" "${FAST[@]}" --out "$SCRATCH/scenarios"
+expect_rc 0
+expect_stdout "$SCRATCH/scenarios/hilly/low.png  32x18"
+expect_stdout "$SCRATCH/scenarios/flat/low.png  32x18"
+if cmp -s "$SCRATCH/scenarios/hilly/low.png" "$SCRATCH/scenarios/flat/low.png"; then
+    fail "the override of scenario 'flat' did not change its image"
+fi
+end
+
 # --- check ----------------------------------------------------------------------
 
 begin "check demo project -> exit 0"
