@@ -1,8 +1,6 @@
 // `sylva check PROJECT [-D name=value] [--set block.attr=value] [--print-params]
 // [--lenient] [--diagnostics=text|json]`: every diagnostic of the project, no rendering.
 // Exit code 0 clean (warnings allowed), 1 errors in the project or its data, 2 usage.
-#include <unistd.h>
-
 #include <cstdio>
 
 #include <nlohmann/json.hpp>
@@ -128,15 +126,11 @@ int runCheck(const std::vector<std::string>& originalArguments) {
         reportError(error);
         return 2;
     }
-    dsl::LoadOptions options;
-    options.defines = command.defines;
-    options.sets = sets;
-    options.lenient = command.has("lenient");
-    dsl::LoadResult loaded = dsl::loadProject(command.positional[0], options);
+    dsl::LoadResult loaded = dsl::loadProject(command.positional[0], loadOptionsFor(command, sets));
     if (format == "json") {
         std::fputs(diagnosticsJson(loaded).c_str(), stdout);
-    } else if (!loaded.diagnostics.empty()) {
-        std::fputs(loaded.render(isatty(fileno(stderr)) != 0).c_str(), stderr);
+    } else {
+        printDiagnostics(loaded);
     }
     if (loaded.hasErrors() || !loaded.model) {
         return 1;

@@ -1,7 +1,5 @@
 // `sylva dump --json PROJECT [-D name=value] [--set block.attr=value] [--lenient]`: the
 // evaluated model of every scenario as JSON on stdout (diagnostics on stderr).
-#include <unistd.h>
-
 #include <cstdio>
 
 #include "CommandLine.h"
@@ -33,14 +31,8 @@ int runDump(const std::vector<std::string>& originalArguments) {
         reportError(error);
         return 2;
     }
-    dsl::LoadOptions options;
-    options.defines = command.defines;
-    options.sets = sets;
-    options.lenient = command.has("lenient");
-    dsl::LoadResult loaded = dsl::loadProject(command.positional[0], options);
-    if (!loaded.diagnostics.empty()) {
-        std::fputs(loaded.render(isatty(fileno(stderr)) != 0).c_str(), stderr);
-    }
+    dsl::LoadResult loaded = dsl::loadProject(command.positional[0], loadOptionsFor(command, sets));
+    printDiagnostics(loaded);
     if (loaded.hasErrors() || !loaded.model) {
         return 1;
     }

@@ -10,18 +10,32 @@ namespace sylva::app {
 
 void reportError(const std::string& message) { std::fprintf(stderr, "sylva: %s\n", message.c_str()); }
 
+dsl::LoadOptions loadOptionsFor(const ParsedCommandLine& command,
+                                std::vector<std::pair<std::string, std::string>> sets) {
+    dsl::LoadOptions options;
+    options.defines = command.defines;
+    options.sets = std::move(sets);
+    options.lenient = command.has("lenient");
+    return options;
+}
+
+void printDiagnostics(const dsl::LoadResult& loaded) {
+    if (loaded.diagnostics.empty()) {
+        return;
+    }
+    const std::string text = loaded.render(isatty(fileno(stderr)) != 0);
+    std::fputs(text.c_str(), stderr);
+    if (!text.empty() && text.back() != '\n') {
+        std::fputc('\n', stderr);
+    }
+}
+
 std::optional<ProjectSession> ProjectSession::open(const std::filesystem::path& file,
                                                    const std::vector<std::pair<std::string, std::string>>& defines) {
     dsl::LoadOptions options;
     options.defines = defines;
     dsl::LoadResult loaded = dsl::loadProject(file, options);
-    if (!loaded.diagnostics.empty()) {
-        const std::string text = loaded.render(isatty(fileno(stderr)) != 0);
-        std::fputs(text.c_str(), stderr);
-        if (!text.empty() && text.back() != '\n') {
-            std::fputc('\n', stderr);
-        }
-    }
+    printDiagnostics(loaded);
     if (loaded.hasErrors() || !loaded.model) {
         return std::nullopt;
     }

@@ -10,7 +10,9 @@
 #include <vector>
 
 #include "sylva/core/scene/ProjectModel.h"
+#include "CommandLine.h"
 #include "sylva/core/sources/SourceGraph.h"
+#include "sylva/dsl/ProjectLoader.h"
 
 namespace sylva::app {
 
@@ -31,6 +33,12 @@ struct ProjectSession {
     static std::optional<ProjectSession> open(const std::filesystem::path& file,
                                               const std::vector<std::pair<std::string, std::string>>& defines);
 };
+
+// Load options from a command's -D defines, --set pairs and --lenient flag.
+dsl::LoadOptions loadOptionsFor(const ParsedCommandLine& command,
+                                std::vector<std::pair<std::string, std::string>> sets = {});
+// Prints a load's diagnostics to stderr (colour only on a terminal).
+void printDiagnostics(const dsl::LoadResult& loaded);
 
 // Prints "sylva: <message>" to stderr.
 void reportError(const std::string& message);

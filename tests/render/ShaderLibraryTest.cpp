@@ -14,39 +14,14 @@
 #include "sylva/render/Framebuffer.h"
 #include "sylva/render/GlContext.h"
 #include "sylva/render/ShaderProgram.h"
+#include "ScopedEnv.h"
 
 namespace sylva::render {
 namespace {
 
 const std::string kTestDir = std::string(SYLVA_TEST_DATA_DIR) + "/render/shaders-test";
 
-// Sets (or unsets, with nullptr) an environment variable for one scope.
-class ScopedEnv {
-public:
-    ScopedEnv(const char* name, const char* value) : name_(name) {
-        if (const char* old = std::getenv(name)) {
-            old_ = old;
-        }
-        if (value != nullptr) {
-            setenv(name, value, 1);
-        } else {
-            unsetenv(name);
-        }
-    }
-    ~ScopedEnv() {
-        if (old_) {
-            setenv(name_.c_str(), old_->c_str(), 1);
-        } else {
-            unsetenv(name_.c_str());
-        }
-    }
-    ScopedEnv(const ScopedEnv&) = delete;
-    ScopedEnv& operator=(const ScopedEnv&) = delete;
-
-private:
-    std::string name_;
-    std::optional<std::string> old_;
-};
+using test::ScopedEnv;
 
 class ShaderLibraryTest : public testing::Test {
 protected:
