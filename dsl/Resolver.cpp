@@ -331,8 +331,9 @@ std::vector<ProjectModel> Resolver::resolve(const std::vector<ParsedUnit>& units
                 if (text != nullptr && !text->empty()) {
                     if (Status valid = ProjectedCoordinates::validate(*text); !valid) {
                         projectCrsInvalid_ = true;  // reported once, here
-                        addError(diagnostics_, "E0414", valid.error().message, crs->value.location,
-                                 "not a coordinate reference system GDAL/PROJ can convert to WGS84");
+                        addError(
+                            diagnostics_, "E0414", valid.error().message, crs->value.location,
+                            "not a coordinate reference system GDAL/PROJ can convert to WGS84");
                     } else {
                         projectCrs_ = crs->value;
                     }
@@ -392,6 +393,7 @@ std::vector<ProjectModel> Resolver::resolve(const std::vector<ParsedUnit>& units
     computeContentHashes(model);
     if (scenarios.empty()) {
         findCycles(model.sources);
+        checkPortTypes(model.sources);
         models.push_back(std::move(model));
     }
     for (Declaration* scenario : scenarios) {
@@ -427,6 +429,7 @@ std::vector<ProjectModel> Resolver::resolve(const std::vector<ParsedUnit>& units
         // Without overrides the graph is the base graph, checked once.
         if (!overrides.empty() || scenario == scenarios.front()) {
             findCycles(scenarioModel.sources);
+            checkPortTypes(scenarioModel.sources);
         }
         std::vector<std::string> changed;
         for (const auto& entryPair : overrides) {
@@ -1370,9 +1373,8 @@ std::optional<double> Resolver::coerceAngle(const Value& value, const std::strin
 }
 
 std::optional<Value> Resolver::evaluateCall(const Expr& expr) {
-    static const std::vector<std::string> kFunctions = {"geo",   "min",         "max",  "clamp",
-                                                        "interpolate", "step", "match", "distance",
-                                                        "destination"};
+    static const std::vector<std::string> kFunctions = {
+        "geo", "min", "max", "clamp", "interpolate", "step", "match", "distance", "destination"};
     if (std::find(kFunctions.begin(), kFunctions.end(), expr.text) == kFunctions.end()) {
         Diagnostic& diagnostic =
             addError(diagnostics_, "E0211", "unknown function '" + expr.text + "'", expr.location,
@@ -1439,7 +1441,8 @@ std::optional<Value> Resolver::evaluateCall(const Expr& expr) {
         // destination(from, bearing, distance) keeps from's height.
         const GeoPosition* from = arguments[0].get<GeoPosition>();
         if (!from) {
-            addError(diagnostics_, "E0402", "expected geo position, found " + arguments[0].typeName(),
+            addError(diagnostics_, "E0402",
+                     "expected geo position, found " + arguments[0].typeName(),
                      arguments[0].location, expr.text + "() starts at a geo position");
             return std::nullopt;
         }
@@ -1448,29 +1451,31 @@ std::optional<Value> Resolver::evaluateCall(const Expr& expr) {
         if (expr.text == "distance") {
             const GeoPosition* to = arguments[1].get<GeoPosition>();
             if (!to) {
-                addError(diagnostics_, "E0402", "expected geo position, found " + arguments[1].typeName(),
+                addError(diagnostics_, "E0402",
+                         "expected geo position, found " + arguments[1].typeName(),
                          arguments[1].location, "distance() measures between two geo positions");
                 return std::nullopt;
             }
-            result.data = Quantity{Geodesy::distance(from->latitude, from->longitude, to->latitude, to->longitude),
-                                   Dimension::Length};
+            result.data = Quantity{
+                Geodesy::distance(from->latitude, from->longitude, to->latitude, to->longitude),
+                Dimension::Length};
             return result;
         }
         const Quantity* bearing = arguments[1].get<Quantity>();
         const Quantity* length = arguments[2].get<Quantity>();
         if (!bearing || bearing->dimension != Dimension::Angle) {
-            addError(diagnostics_, "E0403", "expected angle, found " + arguments[1].typeName(), arguments[1].location,
-                     "the bearing of destination() must be an angle");
+            addError(diagnostics_, "E0403", "expected angle, found " + arguments[1].typeName(),
+                     arguments[1].location, "the bearing of destination() must be an angle");
             return std::nullopt;
         }
         if (!length || length->dimension != Dimension::Length) {
-            addError(diagnostics_, "E0403", "expected length, found " + arguments[2].typeName(), arguments[2].location,
-                     "the distance of destination() must be a length");
+            addError(diagnostics_, "E0403", "expected length, found " + arguments[2].typeName(),
+                     arguments[2].location, "the distance of destination() must be a length");
             return std::nullopt;
         }
         GeoPosition reached = *from;
-        Geodesy::destination(from->latitude, from->longitude, bearing->value, length->value, reached.latitude,
-                             reached.longitude);
+        Geodesy::destination(from->latitude, from->longitude, bearing->value, length->value,
+                             reached.latitude, reached.longitude);
         result.data = reached;
         return result;
     }
@@ -1700,19 +1705,23 @@ std::optional<Value> Resolver::coerce(Value value, const AttributeSchema& schema
             }
             if (!projectCrs_) {
                 Diagnostic& diagnostic =
-                    addError(diagnostics_, "E0413", "position in projected coordinates without a project CRS",
+                    addError(diagnostics_, "E0413",
+                             "position in projected coordinates without a project CRS",
                              value.location, what + " is written as [x, y] lengths");
                 diagnostic.help.push_back(
-                    "declare the CRS, e.g. project { crs = \"EPSG:31985\" }, or write geo(lat, lon)");
+                    "declare the CRS, e.g. project { crs = \"EPSG:31985\" }, or write geo(lat, "
+                    "lon)");
                 return std::nullopt;
             }
             const std::string& crs = *projectCrs_->get<std::string>();
             Result<GeodeticPoint> point = ProjectedCoordinates::toGeodetic(
                 crs, (*list)[0].get<Quantity>()->value, (*list)[1].get<Quantity>()->value);
             if (!point) {
-                Diagnostic& diagnostic = addError(diagnostics_, "E0414", point.error().message, value.location,
-                                                  "outside what '" + crs + "' can convert");
-                diagnostic.notes.push_back({"the project CRS is declared here", projectCrs_->location});
+                Diagnostic& diagnostic =
+                    addError(diagnostics_, "E0414", point.error().message, value.location,
+                             "outside what '" + crs + "' can convert");
+                diagnostic.notes.push_back(
+                    {"the project CRS is declared here", projectCrs_->location});
                 return std::nullopt;
             }
             GeoPosition position{point->latitude, point->longitude, std::nullopt};
@@ -1817,7 +1826,10 @@ std::optional<Value> Resolver::coerce(Value value, const AttributeSchema& schema
             }
             if (target == "source" && schema.port != PortType::None) {
                 const Declaration& declaration = declarations_[names_[reference->name]];
-                if (declaration.schema && declaration.schema->output != schema.port) {
+                // Sources whose output follows their attributes are checked by
+                // checkPortTypes() once the whole graph is known.
+                if (declaration.schema && declaration.schema->output != PortType::None &&
+                    declaration.schema->output != schema.port) {
                     addError(diagnostics_, "E0406",
                              std::string("expected ") + portTypeName(schema.port) + ", found " +
                                  portTypeName(declaration.schema->output),
@@ -1862,6 +1874,80 @@ std::optional<Value> Resolver::coerce(Value value, const AttributeSchema& schema
         }
     }
     return std::nullopt;
+}
+
+std::optional<PortType> Resolver::outputOf(const std::vector<Block>& sources,
+                                           const std::string& name, int depth) const {
+    auto block = std::find_if(sources.begin(), sources.end(),
+                              [&](const Block& candidate) { return candidate.name == name; });
+    if (block == sources.end() || depth > 64) {
+        return std::nullopt;  // an error already reported, or a cycle (reported by findCycles)
+    }
+    const KindSchema* kindSchema = schema_.find("source", block->kind);
+    if (!kindSchema) {
+        return std::nullopt;
+    }
+    const std::string_view decidedBy = schema_.outputFrom(block->kind);
+    if (kindSchema->output != PortType::None || decidedBy.empty()) {
+        return kindSchema->output == PortType::None ? std::nullopt
+                                                    : std::optional(kindSchema->output);
+    }
+    const Attribute* decider = block->find(decidedBy);
+    if (!decider) {
+        return std::nullopt;
+    }
+    if (const Reference* reference = decider->value.get<Reference>()) {
+        return outputOf(sources, reference->name, depth + 1);
+    }
+    if (const Word* word = decider->value.get<Word>()) {
+        for (PortType type : {PortType::Elevation, PortType::Image, PortType::Normals,
+                              PortType::Mask, PortType::Features, PortType::Instances}) {
+            if (word->text == portTypeName(type)) {
+                return type;
+            }
+        }
+    }
+    return std::nullopt;  // e.g. raster kind = auto: known once the file is opened
+}
+
+void Resolver::checkPortTypes(const std::vector<Block>& sources) {
+    for (const Block& source : sources) {
+        const KindSchema* kindSchema = schema_.find("source", source.kind);
+        if (!kindSchema) {
+            continue;
+        }
+        for (const Attribute& attribute : source.attributes) {
+            const AttributeSchema* attributeSchema = kindSchema->find(attribute.name);
+            const Reference* reference = attribute.value.get<Reference>();
+            if (!attributeSchema || !reference || reference->kind != "source" ||
+                attributeSchema->port == PortType::None) {
+                continue;
+            }
+            auto target = std::find_if(sources.begin(), sources.end(), [&](const Block& candidate) {
+                return candidate.name == reference->name;
+            });
+            const KindSchema* targetSchema =
+                target == sources.end() ? nullptr : schema_.find("source", target->kind);
+            if (!targetSchema || targetSchema->output != PortType::None) {
+                continue;  // declared outputs were checked where the reference was written
+            }
+            std::optional<PortType> output = outputOf(sources, reference->name, 0);
+            if (output && *output != attributeSchema->port) {
+                const std::string key = source.name + "." + attribute.name + "@" +
+                                        std::to_string(attribute.value.location.line) + ":" +
+                                        std::to_string(attribute.value.location.column);
+                if (!reportedPortErrors_.insert(key).second) {
+                    continue;  // the same attribute in another scenario's model
+                }
+                addError(diagnostics_, "E0406",
+                         std::string("expected ") + portTypeName(attributeSchema->port) +
+                             ", found " + portTypeName(*output),
+                         attribute.value.location,
+                         "'" + reference->name + "' is " + withArticle(target->kind) +
+                             " source, which outputs " + portTypeName(*output));
+            }
+        }
+    }
 }
 
 void Resolver::findCycles(const std::vector<Block>& sources) {

@@ -133,6 +133,22 @@ void table(std::string& out, const std::vector<AttributeSchema>& attributes) {
     }
 }
 
+// "elevation", or for kinds whose output follows an attribute, which one decides it.
+std::string outputText(const SchemaRegistry& registry, const KindSchema& kind) {
+    if (kind.output != PortType::None) {
+        return portTypeName(kind.output);
+    }
+    const std::string_view decidedBy = registry.outputFrom(kind.kind);
+    if (decidedBy.empty()) {
+        return "decided when the graph is built";
+    }
+    const AttributeSchema* attribute = kind.find(decidedBy);
+    if (attribute && attribute->type == ValueType::Reference) {
+        return "the output type of `" + std::string(decidedBy) + "`";
+    }
+    return "as `" + std::string(decidedBy) + "` says";
+}
+
 }  // namespace
 
 std::string SchemaReference::markdown(const SchemaRegistry& registry) {
@@ -143,7 +159,7 @@ std::string SchemaReference::markdown(const SchemaRegistry& registry) {
         out += "\n### `" + title(kind) + "`\n\n";
         out += kind.doc + "\n";
         if (kind.keyword == "source") {
-            out += "\nOutput: " + std::string(portTypeName(kind.output)) + ".\n";
+            out += "\nOutput: " + outputText(registry, kind) + ".\n";
         }
         if (!kind.attributes.empty()) {
             out += "\n";
@@ -168,7 +184,7 @@ std::string SchemaReference::text(const SchemaRegistry& registry, const std::str
         }
         std::string out = title(kind) + "\n\n  " + kind.doc + "\n";
         if (kind.keyword == "source") {
-            out += "  output: " + std::string(portTypeName(kind.output)) + "\n";
+            out += "  output: " + outputText(registry, kind) + "\n";
         }
         out += "\n";
         std::vector<const AttributeSchema*> all;

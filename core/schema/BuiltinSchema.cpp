@@ -380,6 +380,13 @@ void addImageSourceKinds(SchemaRegistry& registry) {
           number("close", Dimension::Length, 0.0, 0.0, 1e5,
                  "Radius of a morphological closing (dilate, then erode): fills holes."),
           number("feather", Dimension::Length, 0.0, 0.0, 1e5, "Blur radius of the edges, in metres.")}});
+
+    // Sources whose output type follows an attribute (checked by the DSL once the whole
+    // graph is known).
+    registry.setOutputFrom("raster", "kind");
+    registry.setOutputFrom("constant", "kind");
+    registry.setOutputFrom("adjust", "input");
+    registry.setOutputFrom("blend", "base");
 }
 
 }  // namespace

@@ -103,6 +103,11 @@ private:
     void fillDefaults(Block& block, const KindSchema& schema,
                       const std::vector<std::string>& written = {});
     void findCycles(const std::vector<Block>& sources);
+    // Port types of references to sources whose output follows their attributes
+    // (KindSchema::outputFrom), checked on the finished graph of one model.
+    void checkPortTypes(const std::vector<Block>& sources);
+    std::optional<PortType> outputOf(const std::vector<Block>& sources, const std::string& name,
+                                     int depth) const;
     std::string describeBlock(const KindSchema& schema) const;
     void resolveScenario(Declaration& scenario);
     void rebasePath(const AttributeNode& attribute, Value& value) const;
@@ -138,6 +143,7 @@ private:
     std::string scope_;                                 // scope of the expression being evaluated
     std::vector<std::string> evaluatingFields_;         // "block.field" being evaluated (cycles)
     std::set<std::string> reportedCycles_;
+    std::set<std::string> reportedPortErrors_;
     std::map<std::string, std::vector<Patch>> setPatches_;  // --set, by block name
 };
 

@@ -27,7 +27,7 @@ enum class PortType {
 const char* portTypeName(PortType type);  // "elevation", "image", ...
 
 enum class ValueType {
-    Number,     // a Quantity; `dimension` says which
+    Number,  // a Quantity; `dimension` says which
     Bool,
     String,
     Color,
@@ -44,7 +44,7 @@ struct AttributeSchema {
     ValueType type = ValueType::Number;
     Dimension dimension = Dimension::None;  // for Number (and List of Number)
     PortType port = PortType::None;         // for Reference to a source
-    std::string target;                     // for Reference to a non-source block: "camera", "scenario"
+    std::string target;  // for Reference to a non-source block: "camera", "scenario"
     ValueType element = ValueType::Number;  // for List
     std::vector<std::string> words;         // for Word
     std::optional<double> minimum;          // inclusive, in SI units
@@ -57,8 +57,8 @@ struct AttributeSchema {
 };
 
 struct KindSchema {
-    std::string keyword;  // "source", "camera", "render" ...
-    std::string kind;     // source kind ("noise"); empty for other blocks
+    std::string keyword;               // "source", "camera", "render" ...
+    std::string kind;                  // source kind ("noise"); empty for other blocks
     PortType output = PortType::None;  // for sources
     std::string doc;
     std::vector<AttributeSchema> attributes;
@@ -82,8 +82,16 @@ public:
         return const_cast<KindSchema*>(find(keyword, kind));
     }
 
+    // For source kinds whose output depends on the block (output == None): the attribute
+    // that decides it, either a word attribute whose value names a port type
+    // ("elevation", "image"; other words leave it open until the graph is built) or a
+    // port attribute whose source's output is passed on. Empty: decided at graph build.
+    void setOutputFrom(std::string_view kind, std::string attribute);
+    std::string_view outputFrom(std::string_view kind) const;
+
 private:
     std::vector<KindSchema> kinds_;
+    std::vector<std::pair<std::string, std::string>> outputFrom_;  // kind, attribute
 };
 
 // Registers the blocks of the project language that are not sources (compare, blend,
