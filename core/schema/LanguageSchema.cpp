@@ -104,16 +104,28 @@ void addLanguageSchema(SchemaRegistry& registry) {
                        angle("heading", 360, "Compass direction of view."),
                        angle("pitch", 90, "View elevation above the horizon."),
                        angle("roll", 180, "Rotation about the view direction."),
-                       attribute("look_at", ValueType::Geo, "A point to look at.")};
+                       attribute("look_at", ValueType::Geo, "A point to look at."),
+                       [] {
+                           AttributeSchema eyeHeight = attribute(
+                               "eye_height", ValueType::Number,
+                               "Height above the terrain (replaces the position's height); when "
+                               "every key has one the camera follows the ground between keys.");
+                           eyeHeight.dimension = Dimension::Length;
+                           eyeHeight.minimum = 0.01;
+                           return eyeHeight;
+                       }()};
         AttributeSchema fps = attribute("fps", ValueType::Number, "Frames per second.");
         fps.minimum = 1;
         fps.maximum = 240;
         fps.defaultValue = number(25, Dimension::None);
+        AttributeSchema fov = angle("fov", 170, "Vertical field of view.");
+        fov.minimum = 1 * 3.14159265358979323846 / 180.0;
+        fov.defaultValue = number(60 * 3.14159265358979323846 / 180.0, Dimension::Angle);
         registry.add({"path",
                       "",
                       PortType::None,
                       "A camera animation: key frames interpolated over time.",
-                      {interpolate, keys, fps}});
+                      {interpolate, keys, fps, fov}});
     }
     if (KindSchema* views = registry.edit("views")) {
         if (!views->find("times")) {
