@@ -15,7 +15,8 @@ Status ImageWriter::writeRgba8(const std::filesystem::path& path, int width, int
     const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : ".";
     std::filesystem::create_directories(folder, error);
     if (error) {
-        return Error{path.string() + ": cannot create folder '" + folder.string() + "': " + error.message()};
+        return Error{path.string() + ": cannot create folder '" + folder.string() +
+                     "': " + error.message()};
     }
     static std::atomic<unsigned> counter{0};
     // Same folder (so rename is atomic) and the same extension (so OIIO picks the format).
@@ -32,7 +33,8 @@ Status ImageWriter::writeRgba8(const std::filesystem::path& path, int width, int
     // OIIO takes them as premultiplied and divides on write.
     spec.attribute("oiio:UnassociatedAlpha", 1);
     spec.attribute("Software", "Sylva");
-    bool ok = output->open(temporary.string(), spec) && output->write_image(OIIO::TypeDesc::UINT8, pixels.data());
+    bool ok = output->open(temporary.string(), spec) &&
+              output->write_image(OIIO::TypeDesc::UINT8, pixels.data());
     std::string reason = ok ? "" : output->geterror();
     ok = output->close() && ok;
     if (!ok) {
@@ -40,18 +42,21 @@ Status ImageWriter::writeRgba8(const std::filesystem::path& path, int width, int
             reason = output->geterror();
         }
         std::filesystem::remove(temporary, error);
-        return Error{path.string() + ": cannot write image: " + (reason.empty() ? "unknown error" : reason)};
+        return Error{path.string() +
+                     ": cannot write image: " + (reason.empty() ? "unknown error" : reason)};
     }
     std::filesystem::rename(temporary, path, error);
     if (error) {
         std::error_code ignored;
         std::filesystem::remove(temporary, ignored);
-        return Error{path.string() + ": cannot move the finished image into place: " + error.message()};
+        return Error{path.string() +
+                     ": cannot move the finished image into place: " + error.message()};
     }
     return Status::success();
 }
 
-Result<std::vector<std::uint8_t>> ImageWriter::readRgba8(const std::filesystem::path& path, int& width, int& height) {
+Result<std::vector<std::uint8_t>> ImageWriter::readRgba8(const std::filesystem::path& path,
+                                                         int& width, int& height) {
     // Keep alpha straight on reading too (OIIO premultiplies by default).
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);

@@ -19,7 +19,8 @@ public:
     static Status writeRgba8(const std::filesystem::path& path, int width, int height,
                              const std::vector<std::uint8_t>& pixels);
     // Reads any image OpenImageIO can read into 8-bit RGBA (alpha 255 if absent).
-    static Result<std::vector<std::uint8_t>> readRgba8(const std::filesystem::path& path, int& width, int& height);
+    static Result<std::vector<std::uint8_t>> readRgba8(const std::filesystem::path& path,
+                                                       int& width, int& height);
 };
 
 }  // namespace sylva
