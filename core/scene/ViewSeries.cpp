@@ -1,0 +1,346 @@
+#include "sylva/core/scene/ViewSeries.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+
+#include "sylva/core/scene/BlockReader.h"
+#include "sylva/core/scene/CameraPath.h"
+
+namespace sylva {
+namespace {
+
+// Fields of a canonical DateTime text "YYYY-MM-DDThh:mm:ss±hh:mm".
+struct TimeFields {
+    std::string year, month, day, hour, minute, second, zone;
+};
+
+TimeFields fieldsOf(const DateTime& time) {
+    const std::string text = time.text();
+    TimeFields fields;
+    fields.year = text.substr(0, 4);
+    fields.month = text.substr(5, 2);
+    fields.day = text.substr(8, 2);
+    fields.hour = text.substr(11, 2);
+    fields.minute = text.substr(14, 2);
+    fields.second = text.substr(17, 2);
+    const std::string zone = text.substr(19);
+    fields.zone = zone.size() == 6 ? zone.substr(0, 3) + zone.substr(4, 2) : "";
+    return fields;
+}
+
+std::string locationOf(const Block& block, std::string_view attribute) {
+    if (const Attribute* found = block.find(attribute)) {
+        return found->location.toString();
+    }
+    return block.location.toString();
+}
+
+}  // namespace
+
+Result<std::string> ViewSeries::expandTemplate(const std::string& pattern, const RenderJob& job) {
+    std::string out;
+    for (std::size_t i = 0; i < pattern.size(); ++i) {
+        if (pattern[i] != '{') {
+            out += pattern[i];
+            continue;
+        }
+        const std::size_t close = pattern.find('}', i);
+        if (close == std::string::npos) {
+            return Error{"unclosed '{' in output template '" + pattern + "'"};
+        }
+        const std::string token = pattern.substr(i + 1, close - i - 1);
+        i = close;
+        if (token == "view") {
+            out += job.view;
+        } else if (token == "camera") {
+            out += job.path.empty() ? job.camera : job.path;
+        } else if (token == "path") {
+            out += job.path;
+        } else if (token == "frame") {
+            char text[16];
+            std::snprintf(text, sizeof text, "%05d", std::max(job.frame, 0));
+            out += text;
+        } else if (token == "scenario") {
+            out += job.scenario;
+        } else if (token == "time" || token.rfind("time:", 0) == 0) {
+            if (!job.time) {
+                continue;  // no times in this series: the token vanishes
+            }
+            const TimeFields f = fieldsOf(*job.time);
+            if (token == "time") {
+                out += f.year + "-" + f.month + "-" + f.day + "T" + f.hour + f.minute + f.zone;
+                continue;
+            }
+            const std::string format = token.substr(5);
+            for (std::size_t k = 0; k < format.size(); ++k) {
+                if (format[k] != '%' || k + 1 == format.size()) {
+                    out += format[k];
+                    continue;
+                }
+                switch (format[++k]) {
+                    case 'Y':
+                        out += f.year;
+                        break;
+                    case 'm':
+                        out += f.month;
+                        break;
+                    case 'd':
+                        out += f.day;
+                        break;
+                    case 'H':
+                        out += f.hour;
+                        break;
+                    case 'M':
+                        out += f.minute;
+                        break;
+                    case 'S':
+                        out += f.second;
+                        break;
+                    case 'z':
+                        out += f.zone;
+                        break;
+                    case '%':
+                        out += '%';
+                        break;
+                    default:
+                        return Error{std::string("unknown time format '%") + format[k] +
+                                     "' in output template '" + pattern +
+                                     "' (known: %Y %m %d %H %M %S %z)"};
+                }
+            }
+        } else {
+            return Error{
+                "unknown placeholder '{" + token + "}' in output template '" + pattern +
+                "' (known: {view} {camera} {path} {frame} {scenario} {time} {time:FORMAT})"};
+        }
+    }
+    return out;
+}
+
+Result<std::vector<RenderJob>> ViewSeries::expand(const ProjectModel& model,
+                                                  const std::filesystem::path& outputFolder,
+                                                  const std::string& viewsName) {
+    std::vector<const Block*> viewBlocks;
+    for (const Block& block : model.views) {
+        if (viewsName.empty() || block.name == viewsName) {
+            viewBlocks.push_back(&block);
+        }
+    }
+    if (!viewsName.empty() && viewBlocks.empty()) {
+        std::string known;
+        for (const Block& block : model.views) {
+            known += (known.empty() ? "" : ", ") + block.name;
+        }
+        return Error{model.file.string() + ": no views block named '" + viewsName + "'" +
+                     (known.empty() ? "" : " (the project has: " + known + ")")};
+    }
+    if (viewBlocks.empty()) {
+        return Error{model.file.string() + ": the project has no views block: nothing to render"};
+    }
+
+    std::vector<RenderJob> images;
+    std::vector<RenderJob> comparisons;
+    std::vector<std::string> patterns;  // per job, for collision messages
+    std::map<std::string, std::size_t> groups;
+    for (const Block* views : viewBlocks) {
+        BlockReader reader(*views, SchemaRegistry::builtin().find("views"));
+        const std::string pattern = reader.string("output", "{camera}.png");
+        std::vector<std::string> scenarios = reader.references("scenarios");
+        if (scenarios.empty()) {
+            scenarios.push_back(model.scenarios.empty() ? std::string()
+                                                        : model.scenarios.front().name);
+        }
+        // Times: every entry needs a date, a time of day and a zone.
+        std::vector<std::optional<DateTime>> times;
+        if (const Attribute* written = views->find("times")) {
+            if (const ValueList* list = written->value.get<ValueList>()) {
+                for (const Value& item : *list) {
+                    const std::string* text = item.get<std::string>();
+                    Result<DateTime> parsed =
+                        text ? DateTime::parse(*text) : Result<DateTime>(Error{"not a time"});
+                    if (!parsed) {
+                        return Error{item.location.toString() + ": views '" + views->name +
+                                     "': " + parsed.error().message};
+                    }
+                    if (Result<double> instant = parsed.value().unixSeconds(); !instant) {
+                        return Error{item.location.toString() + ": views '" + views->name +
+                                     "': " + instant.error().message};
+                    }
+                    times.push_back(parsed.value());
+                }
+            }
+        }
+        if (times.empty()) {
+            times.push_back(std::nullopt);
+        }
+        // Viewpoints: cameras, then every frame of every path.
+        struct Viewpoint {
+            std::string camera, path;
+            int frame = -1;
+            double pathTime = 0;
+        };
+        std::vector<Viewpoint> viewpoints;
+        for (const std::string& camera : reader.references("cameras")) {
+            if (!model.findCamera(camera)) {
+                return Error{reader.where("cameras") + "unknown camera '" + camera + "'"};
+            }
+            viewpoints.push_back({camera, "", -1, 0});
+        }
+        for (const std::string& pathName : reader.references("paths")) {
+            const Block* pathBlock = model.findPath(pathName);
+            if (!pathBlock) {
+                return Error{reader.where("paths") + "unknown path '" + pathName + "'"};
+            }
+            Result<CameraPath> path = CameraPath::fromBlock(*pathBlock);
+            if (!path) {
+                return path.error();
+            }
+            for (int frame = 0; frame < path.value().frameCount(); ++frame) {
+                viewpoints.push_back({"", pathName, frame, path.value().frameTime(frame)});
+            }
+        }
+        if (viewpoints.empty()) {
+            return Error{reader.where() + "no cameras or paths to render"};
+        }
+        for (const Viewpoint& viewpoint : viewpoints) {
+            for (const std::optional<DateTime>& time : times) {
+                const std::size_t firstImage = images.size();
+                for (const std::string& scenario : scenarios) {
+                    RenderJob job;
+                    job.view = views->name;
+                    job.camera = viewpoint.camera;
+                    job.path = viewpoint.path;
+                    job.frame = viewpoint.frame;
+                    job.pathTime = viewpoint.pathTime;
+                    job.scenario = scenario;
+                    job.time = time;
+                    job.unixSeconds = time ? time->unixSeconds().value() : 0.0;
+                    Result<std::string> name = expandTemplate(pattern, job);
+                    if (!name) {
+                        return Error{locationOf(*views, "output") + ": views '" + views->name +
+                                     "': " + name.error().message};
+                    }
+                    job.output = outputFolder / name.value();
+                    const std::string key = groupOf(job);
+                    job.group = groups.emplace(key, groups.size()).first->second;
+                    images.push_back(std::move(job));
+                    patterns.push_back(pattern);
+                }
+                // Comparisons whose two scenarios this series renders.
+                auto imageOf = [&](const std::string& scenario) -> std::optional<std::size_t> {
+                    for (std::size_t i = firstImage; i < images.size(); ++i) {
+                        if (images[i].scenario == scenario) {
+                            return i;
+                        }
+                    }
+                    return std::nullopt;
+                };
+                auto addComparisons = [&](const std::vector<Block>& blocks, RenderJobKind kind,
+                                          const char* firstName, const char* secondName) -> Status {
+                    for (const Block& block : blocks) {
+                        BlockReader comparison(block, nullptr);
+                        std::optional<std::string> first = comparison.reference(firstName);
+                        std::optional<std::string> second = comparison.reference(secondName);
+                        if (!first || !second) {
+                            continue;
+                        }
+                        std::optional<std::size_t> a = imageOf(*first);
+                        std::optional<std::size_t> b = imageOf(*second);
+                        if (!a || !b) {
+                            continue;
+                        }
+                        if (pattern.find("{scenario}") == std::string::npos) {
+                            return Error{locationOf(*views, "output") + ": views '" + views->name +
+                                         "': the series makes the " + block.keyword + " image '" +
+                                         block.name + "', so its output template needs {scenario}"};
+                        }
+                        RenderJob job = images[*a];
+                        job.kind = kind;
+                        job.scenario = block.name;
+                        job.first = *a;
+                        job.second = *b;
+                        Result<std::string> name = expandTemplate(pattern, job);
+                        if (!name) {
+                            return name.error();
+                        }
+                        job.output = outputFolder / name.value();
+                        comparisons.push_back(std::move(job));
+                    }
+                    return {};
+                };
+                if (Status added =
+                        addComparisons(model.compares, RenderJobKind::Compare, "left", "right");
+                    !added) {
+                    return added.error();
+                }
+                if (Status added = addComparisons(model.blends, RenderJobKind::Blend, "from", "to");
+                    !added) {
+                    return added.error();
+                }
+            }
+        }
+    }
+    std::vector<RenderJob> jobs = std::move(images);
+    for (RenderJob& comparison : comparisons) {
+        jobs.push_back(std::move(comparison));
+    }
+    // Two jobs onto one file: the template lacks a placeholder that tells them apart.
+    std::map<std::filesystem::path, std::size_t> outputs;
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+        jobs[i].index = i;
+        const std::filesystem::path normal = jobs[i].output.lexically_normal();
+        auto [found, inserted] = outputs.emplace(normal, i);
+        if (!inserted) {
+            const RenderJob& other = jobs[found->second];
+            const Block* views = model.findViews(jobs[i].view);
+            auto describe = [](const RenderJob& job) {
+                std::string text = job.path.empty()
+                                       ? "camera " + job.camera
+                                       : "path " + job.path + " frame " + std::to_string(job.frame);
+                text +=
+                    ", " +
+                    std::string(job.kind == RenderJobKind::Image ? "scenario " : "comparison ") +
+                    job.scenario;
+                if (job.time) {
+                    text += ", time " + job.time->text();
+                }
+                return text;
+            };
+            return Error{(views ? locationOf(*views, "output") : model.file.string()) +
+                         ": views '" + jobs[i].view + "': two images would be written to '" +
+                         normal.string() + "' (" + describe(other) + "; " + describe(jobs[i]) +
+                         "); add {camera}, {scenario}, {time} or {frame} to the output template"};
+        }
+    }
+    return jobs;
+}
+
+std::string ViewSeries::groupOf(const RenderJob& job) {
+    return job.view + "\n" + job.camera + "\n" + job.path + "\n" + std::to_string(job.frame) +
+           "\n" + (job.time ? job.time->text() : std::string());
+}
+
+Result<std::pair<int, int>> ViewSeries::parseShard(const std::string& text) {
+    int index = 0;
+    int count = 0;
+    char rest = 0;
+    if (std::sscanf(text.c_str(), "%d/%d%c", &index, &count, &rest) != 2 || count < 1 ||
+        index < 1 || index > count) {
+        return Error{"--shard expects i/N with 1 <= i <= N (e.g. 2/4), got '" + text + "'"};
+    }
+    return std::pair<int, int>{index, count};
+}
+
+std::vector<RenderJob> ViewSeries::shard(const std::vector<RenderJob>& jobs, int index, int count) {
+    SYLVA_CHECK(count >= 1 && index >= 1 && index <= count);
+    std::vector<RenderJob> mine;
+    for (const RenderJob& job : jobs) {
+        if (static_cast<int>(job.group % static_cast<std::size_t>(count)) == index - 1) {
+            mine.push_back(job);
+        }
+    }
+    return mine;
+}
+
+}  // namespace sylva
