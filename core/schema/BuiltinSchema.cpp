@@ -51,8 +51,8 @@ AttributeSchema number(std::string name, Dimension dimension, std::optional<doub
 
 AttributeSchema optionalNumber(std::string name, Dimension dimension, std::optional<double> minimum,
                                std::optional<double> maximum, std::string doc) {
-    AttributeSchema a =
-        number(std::move(name), dimension, std::nullopt, minimum, maximum, std::move(doc));
+    AttributeSchema a = number(std::move(name), dimension, std::nullopt, minimum, maximum,
+                               std::move(doc));
     a.required = false;
     return a;
 }
@@ -91,8 +91,8 @@ AttributeSchema referenceList(std::string name, std::string target, PortType por
     return a;
 }
 
-AttributeSchema wordChoice(std::string name, std::vector<std::string> words,
-                           std::string defaultWord, std::string doc) {
+AttributeSchema wordChoice(std::string name, std::vector<std::string> words, std::string defaultWord,
+                           std::string doc) {
     AttributeSchema a;
     a.name = std::move(name);
     a.type = ValueType::Word;
@@ -124,22 +124,16 @@ void addImageSourceKinds(SchemaRegistry& registry);
 SchemaRegistry makeBuiltin() {
     SchemaRegistry registry;
 
-    registry.add(
-        {"project",
-         "",
-         PortType::None,
-         "Project-wide settings.",
-         {simple("title", ValueType::String, text(""), "Title shown in outputs."),
-          simple("description", ValueType::String, text(""), "Free text."),
-          simple("crs", ValueType::String, text(""),
-                 "Coordinate reference system for positions written as [x, y] or [x, y, "
-                 "height] lengths instead of geo(...), e.g. \"EPSG:31985\" (UTM zone 25S); "
-                 "any definition GDAL/PROJ accepts. Empty: only geo() positions.")}});
+    registry.add({"project", "", PortType::None, "Project-wide settings.",
+                  {simple("title", ValueType::String, text(""), "Title shown in outputs."),
+                   simple("description", ValueType::String, text(""), "Free text."),
+                   simple("crs", ValueType::String, text(""),
+                          "Coordinate reference system for positions written as [x, y] or [x, y, "
+                          "height] lengths instead of geo(...), e.g. \"EPSG:31985\" (UTM zone 25S); "
+                          "any definition GDAL/PROJ accepts. Empty: only geo() positions.")}});
 
     registry.add(
-        {"source",
-         "noise",
-         PortType::Elevation,
+        {"source", "noise", PortType::Elevation,
          "Fractal relief on the sphere: continents from fBm of 3D gradient noise and mountains "
          "from a ridged multifractal masked to land, both evaluated on the unit sphere, so "
          "the surface is seamless at the antimeridian and the poles. Octaves finer than two "
@@ -164,9 +158,7 @@ SchemaRegistry makeBuiltin() {
           number("offset", Dimension::Length, 0, -1e5, 1e5, "Added to every height, in metres.")}});
 
     registry.add(
-        {"source",
-         "normal_map",
-         PortType::Normals,
+        {"source", "normal_map", PortType::Normals,
          "Metric surface normals on the WGS84 ellipsoid (ECEF unit vectors) from an elevation "
          "source, by central differences over the tile border: seamless across tiles and "
          "correct at any latitude.",
@@ -175,9 +167,7 @@ SchemaRegistry makeBuiltin() {
                  "Scale applied to slopes before normalising.")}});
 
     registry.add(
-        {"source",
-         "hypsometric",
-         PortType::Image,
+        {"source", "hypsometric", PortType::Image,
          "Colour from elevation and slope: a hypsometric ramp of height/colour stops "
          "(sRGB colours, interpolated in linear RGB), water below sea level, and rock on "
          "slopes steeper than slope_start, fully at slope_end.",
@@ -200,9 +190,7 @@ SchemaRegistry makeBuiltin() {
 
     addImageSourceKinds(registry);
 
-    registry.add({"scenario",
-                  "",
-                  PortType::None,
+    registry.add({"scenario", "", PortType::None,
                   "A state of the landscape: the layers the terrain is made of. Elevation, "
                   "image and normals layers feed the height, colour and normal clipmaps.",
                   {referenceList("layers", "source", PortType::None, true,
@@ -213,9 +201,7 @@ SchemaRegistry makeBuiltin() {
                                           "geo(lat, lon[, height above the ellipsoid]).");
         position.required = true;
         registry.add(
-            {"camera",
-             "",
-             PortType::None,
+            {"camera", "", PortType::None,
              "A viewpoint. Height comes from eye_height (above the terrain) if given, otherwise "
              "from the third component of position (above the ellipsoid).",
              {position,
@@ -237,10 +223,7 @@ SchemaRegistry makeBuiltin() {
         AttributeSchema output = simple("output", ValueType::String, text("{camera}.png"),
                                         "Output path template; {camera} and {scenario} are "
                                         "replaced. Relative to the --out folder.");
-        registry.add({"views",
-                      "",
-                      PortType::None,
-                      "A series of images to render.",
+        registry.add({"views", "", PortType::None, "A series of images to render.",
                       {referenceList("cameras", "camera", PortType::None, false,
                                      "Cameras to render (a views block needs cameras or paths)."),
                        referenceList("scenarios", "scenario", PortType::None, false,
@@ -255,17 +238,14 @@ SchemaRegistry makeBuiltin() {
         resolution.element = ValueType::Number;
         resolution.dimension = Dimension::Pixels;
         Value defaultResolution;
-        defaultResolution.data =
-            ValueList{quantity(1280, Dimension::Pixels), quantity(720, Dimension::Pixels)};
+        defaultResolution.data = ValueList{quantity(1280, Dimension::Pixels),
+                                           quantity(720, Dimension::Pixels)};
         resolution.defaultValue = defaultResolution;
         resolution.doc = "Image size [width, height] in pixels.";
         Value sun;
         sun.data = GeoPosition{23 * kDegree, 20 * kDegree, std::nullopt};
         registry.add(
-            {"render",
-             "",
-             PortType::None,
-             "How images are rendered.",
+            {"render", "", PortType::None, "How images are rendered.",
              {resolution,
               simple("sun", ValueType::Geo, sun,
                      "Subsolar point: where on Earth the sun stands at the zenith."),
@@ -275,7 +255,8 @@ SchemaRegistry makeBuiltin() {
                      "Clamp terrain below 0 m to a flat sea surface."),
               number("exposure", Dimension::None, 1.0, 0.01, 100.0,
                      "Scale applied to radiance before tone mapping."),
-              number("max_level", Dimension::None, 24, 4, 28, "Finest clipmap level drawn.")}});
+              number("max_level", Dimension::None, 24, 4, 28,
+                     "Finest clipmap level drawn.")}});
     }
     addLanguageSchema(registry);
     return registry;
@@ -284,15 +265,12 @@ SchemaRegistry makeBuiltin() {
 void addImageSourceKinds(SchemaRegistry& registry) {
     const Value grey = color(0.5f, 0.5f, 0.5f);
     registry.add(
-        {"source",
-         "raster",
-         PortType::None,
+        {"source", "raster", PortType::None,
          "Any raster GDAL reads (GeoTIFF/COG, VRT, JPEG2000 where the driver exists, PNG/JPEG "
          "with a world file ...) in any CRS, reprojected on the fly to the longitude/latitude "
          "tile grid: every texel centre is transformed to the file's CRS (exactly, or interpolated "
          "along rows where that is within 0.125 source pixels, like GDAL's approximate "
-         "transformer), the window it spans is read (through the file's overviews, averaged, when "
-         "a texel covers more than "
+         "transformer), the window it spans is read (through the file's overviews, averaged, when a texel covers more than "
          "one pixel) and resampled. Outputs an elevation (one channel, metres; its coverage is "
          "a separate mask that `blend` uses) or an image (linear RGB + alpha = coverage). "
          "Texels outside the file or on no-data have coverage 0. A missing, truncated or "
@@ -332,20 +310,15 @@ void addImageSourceKinds(SchemaRegistry& registry) {
                  "Elevation outside the coverage, in metres.")}});
 
     registry.add(
-        {"source",
-         "constant",
-         PortType::None,
+        {"source", "constant", PortType::None,
          "One height or one colour everywhere, full coverage.",
          {wordChoice("kind", {"elevation", "image"}, "elevation", "Elevation or image output."),
-          number("height", Dimension::Length, 0.0, -1e5, 1e5,
-                 "Elevation in metres (kind = elevation)."),
+          number("height", Dimension::Length, 0.0, -1e5, 1e5, "Elevation in metres (kind = elevation)."),
           simple("color", ValueType::Color, grey,
                  "Colour (sRGB as written, output in linear RGB; its alpha is the alpha).")}});
 
     registry.add(
-        {"source",
-         "adjust",
-         PortType::None,
+        {"source", "adjust", PortType::None,
          "Colour corrections of an image, per texel, applied to sRGB-encoded values in [0, 1] "
          "(as image editors do) in this order: levels (black/white point), gamma, brightness, "
          "contrast about mid grey, saturation and hue (rotation about the grey axis with "
@@ -364,9 +337,7 @@ void addImageSourceKinds(SchemaRegistry& registry) {
           number("white", Dimension::None, 1.0, 0.0, 1.0, "Levels: input value mapped to 1.")}});
 
     registry.add(
-        {"source",
-         "blend",
-         PortType::None,
+        {"source", "blend", PortType::None,
          "Lays `over` on `base`. Weight = opacity x over's coverage (image alpha, or the "
          "coverage of an elevation raster) x mask, where feather > 0 fades the coverage in "
          "over about `feather` metres inside its edge (from the coverage at the pyramid level "
@@ -380,14 +351,11 @@ void addImageSourceKinds(SchemaRegistry& registry) {
           number("opacity", Dimension::Ratio, 1.0, 0.0, 1.0, "Overall weight of `over`."),
           number("feather", Dimension::Length, 0.0, 0.0, 1e7,
                  "Width of the fade inside the edge of over's coverage, in metres."),
-          wordChoice("mode", {"normal", "replace", "multiply", "screen", "add", "min", "max"},
-                     "normal",
+          wordChoice("mode", {"normal", "replace", "multiply", "screen", "add", "min", "max"}, "normal",
                      "How over combines with base (elevation: normal/replace, add, min, max).")}});
 
     registry.add(
-        {"source",
-         "mask",
-         PortType::Mask,
+        {"source", "mask", PortType::Mask,
          "A mask in [0, 1] from one to four inputs: a band expression (e.g. NDVI "
          "`(nir - red) / (nir + red) > 0.35`), or a colour classification (1 where the "
          "texel's nearest class colour is `select`), then morphological open/close and a "
@@ -412,8 +380,7 @@ void addImageSourceKinds(SchemaRegistry& registry) {
                  "Radius of a morphological opening (erode, then dilate): removes specks."),
           number("close", Dimension::Length, 0.0, 0.0, 1e5,
                  "Radius of a morphological closing (dilate, then erode): fills holes."),
-          number("feather", Dimension::Length, 0.0, 0.0, 1e5,
-                 "Blur radius of the edges, in metres.")}});
+          number("feather", Dimension::Length, 0.0, 0.0, 1e5, "Blur radius of the edges, in metres.")}});
 
     // Sources whose output type follows an attribute (checked by the DSL once the whole
     // graph is known).
