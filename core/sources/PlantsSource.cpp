@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <map>
 #include <numbers>
 
@@ -86,6 +88,12 @@ bool insidePolygon(const Feature& feature, double shift, double longitude, doubl
     return winding != 0;
 }
 
+std::string decimal(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", value);
+    return text;
+}
+
 std::optional<double> parseNumber(const std::string& text) {
     char* end = nullptr;
     const double value = std::strtod(text.c_str(), &end);
@@ -161,11 +169,10 @@ Result<std::unique_ptr<PlantsSource>> PlantsSource::make(std::string name, const
         new PlantsSource(std::move(name), elevation, density, features, std::move(parameters)));
     const double rowMetres = source->rowHeight_ * kEquatorMeridional;
     if (source->parameters_.spacing >= std::min(rowMetres, source->cellSize_)) {
-        return Error{"spacing " + std::to_string(source->parameters_.spacing) +
+        return Error{"spacing " + decimal(source->parameters_.spacing) +
                      " m must be less than the cell size " +
-                     std::to_string(std::min(rowMetres, source->cellSize_)) +
-                     " m that per_hectare " + std::to_string(source->parameters_.perHectare) +
-                     " gives"};
+                     decimal(std::min(rowMetres, source->cellSize_)) + " m that per_hectare " +
+                     decimal(source->parameters_.perHectare) + " gives"};
     }
     const bool scatters = density != nullptr || features != nullptr;
     if (scatters && source->parameters_.species.empty() &&
