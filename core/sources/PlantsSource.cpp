@@ -528,6 +528,10 @@ Result<std::unique_ptr<Source>> PlantsSource::create(const SourceBuildContext& c
     if (!elevation) {
         return elevation.error();
     }
+    if (elevation.value()->output() != PortType::Elevation) {
+        return Error{reader.where("elevation") + "'elevation' must be an elevation, but source '" +
+                     elevation.value()->name() + "' gives " + portTypeName(elevation.value()->output())};
+    }
     Result<const Source*> density = context.input("density", false);
     if (!density) {
         return density.error();
