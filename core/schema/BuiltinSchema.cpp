@@ -428,6 +428,9 @@ void addVectorSourceKinds(SchemaRegistry& registry) {
           number("line_width", Dimension::Length, 10.0, 0.0, 1e6, "Width of line features in metres."),
           number("point_radius", Dimension::Length, 5.0, 0.0, 1e6,
                  "Radius of point features in metres (instances: times their scale)."),
+          number("minimum_texels", Dimension::None, 0.0, 0.0, 16.0,
+                 "Lines and outlines are at least this many texels wide, so they stay visible in "
+                 "coarse tiles (far views); 0: exactly their width in metres."),
           simple("color", ValueType::Color, color(1.0f, 1.0f, 1.0f), "Fixed colour (sRGB)."),
           simple("color_attribute", ValueType::String, text(""),
                  "Attribute giving each feature's colour: a hex string, or a key of `colors`."),

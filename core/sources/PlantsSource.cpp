@@ -39,10 +39,20 @@ private:
     std::uint64_t state_;
 };
 
+// Murmur3's 64-bit finaliser: a bijective mix, so distinct cells get unrelated streams.
+std::uint64_t mix(std::uint64_t x) {
+    x ^= x >> 33;
+    x *= 0xff51afd7ed558ccdull;
+    x ^= x >> 33;
+    x *= 0xc4ceb9fe1a85ec53ull;
+    x ^= x >> 33;
+    return x;
+}
+
 std::uint64_t cellSeed(std::uint64_t seed, std::int64_t a, std::int64_t b, std::uint64_t salt) {
-    ContentHash hash;
-    hash.add(seed).add(a).add(b).add(salt);
-    return hash.value();
+    std::uint64_t h = mix(seed + 0x9E3779B97F4A7C15ull * (salt + 1));
+    h = mix(h ^ static_cast<std::uint64_t>(a));
+    return mix(h ^ (static_cast<std::uint64_t>(b) * 0xD6E8FEB86659FD93ull));
 }
 
 // Bilinear sample of channel 0 at a longitude/latitude inside the tile (or its border).
@@ -158,6 +168,13 @@ PlantsSource::PlantsSource(std::string name, const Source* elevation, const Sour
     cellSize_ = 0.99 * 100.0 / std::sqrt(parameters_.perHectare);
     rows_ = static_cast<int>(std::ceil(kPi * kEquatorMeridional / cellSize_));
     rowHeight_ = kPi / rows_;
+    // The coarsest level whose texels (north-south, 256 per tile) are at most two cells:
+    // fine enough to resolve the density at the spacing of the instances.
+    sampleLevel_ = 0;
+    while (sampleLevel_ < TileKey::kMaxLevel &&
+           kPi * Ellipsoid::kMeanRadius / (256.0 * std::ldexp(1.0, sampleLevel_)) > 2.0 * cellSize_) {
+        ++sampleLevel_;
+    }
 }
 
 Result<std::unique_ptr<PlantsSource>> PlantsSource::make(std::string name, const Source* elevation,
@@ -231,6 +248,9 @@ Result<std::vector<PlantInstance>> PlantsSource::generate(const TileKey& key, co
         }
         return &tiles.emplace(owner, std::move(inputs)).first->second;
     };
+    // Inputs are sampled at one fixed level, whatever level is asked for.
+    TileKey sampleKey;
+    sampleKey.level = sampleLevel_;
     auto keep = [&](double longitudeUnwrapped, double latitude) {
         if (window.owner) {
             return tileOf(key, longitudeUnwrapped, latitude) == *window.owner;
@@ -342,7 +362,7 @@ Result<std::vector<PlantInstance>> PlantsSource::generate(const TileKey& key, co
                 }
                 instance.tint = glm::vec3(
                     static_cast<float>(1.0 + (2.0 * uTint - 1.0) * parameters_.tintVariation));
-                Result<const Inputs*> inputs = inputsAt(tileOf(key, longitude, p.y));
+                Result<const Inputs*> inputs = inputsAt(tileOf(sampleKey, longitude, p.y));
                 if (!inputs) {
                     return inputs.error();
                 }
@@ -456,7 +476,7 @@ Result<std::vector<PlantInstance>> PlantsSource::generate(const TileKey& key, co
                     }
                 }
                 const double longitude = std::remainder(longitudeUnwrapped, kTwoPi);
-                Result<const Inputs*> inputs = inputsAt(tileOf(key, longitude, latitude));
+                Result<const Inputs*> inputs = inputsAt(tileOf(sampleKey, longitude, latitude));
                 if (!inputs) {
                     return inputs.error();
                 }

@@ -24,7 +24,7 @@ RasterizeSource::RasterizeSource(std::string name, const FeatureSource* features
         .add(parameters_.fill)
         .add(parameters_.outline)
         .add(parameters_.lineWidth);
-    hash.add(parameters_.pointRadius)
+    hash.add(parameters_.pointRadius).add(parameters_.minimumTexels)
         .add(parameters_.color.r)
         .add(parameters_.color.g)
         .add(parameters_.color.b);
@@ -77,6 +77,9 @@ Result<TilePointer> RasterizeSource::produce(const TileKey& key, TileProvider& p
         }
     };
     std::vector<float> coverage, strokes;
+    const double minimumWidth = parameters_.minimumTexels * rasterizer.metresPerTexel(0.5 * w).y;
+    const double outlineWidth = parameters_.outline > 0.0 ? std::max(parameters_.outline, minimumWidth) : 0.0;
+    const double lineWidth = parameters_.lineWidth > 0.0 ? std::max(parameters_.lineWidth, minimumWidth) : 0.0;
     if (features_ != nullptr) {
         Result<std::shared_ptr<const FeatureCollection>> loaded = features_->collection();
         if (!loaded) {
@@ -95,7 +98,7 @@ Result<TilePointer> RasterizeSource::produce(const TileKey& key, TileProvider& p
         // The window reaches out by the widest stroke so outlines of neighbours show.
         const glm::dvec2 metres = rasterizer.metresPerTexel(0.5 * w);
         const double reach =
-            std::max({parameters_.outline, parameters_.lineWidth, 2.0 * parameters_.pointRadius}) /
+            std::max({outlineWidth, lineWidth, 2.0 * parameters_.pointRadius}) /
                 std::min(metres.x, metres.y) +
             format.border + 1.0;
         const double dx = reach * (key.east() - key.west()) / format.size;
@@ -129,17 +132,17 @@ Result<TilePointer> RasterizeSource::produce(const TileKey& key, TileProvider& p
                     if (parameters_.fill) {
                         rasterizer.fillPolygon(feature.parts, hit.longitudeShift, coverage);
                     }
-                    if (parameters_.outline > 0.0) {
+                    if (outlineWidth > 0.0) {
                         strokes.assign(texels, 0.0f);
                         rasterizer.strokeLines(feature.parts, hit.longitudeShift,
-                                               parameters_.outline, strokes);
+                                               outlineWidth, strokes);
                         for (std::size_t i = 0; i < texels; ++i) {
                             coverage[i] = std::max(coverage[i], strokes[i]);
                         }
                     }
                     break;
                 case GeometryKind::Line:
-                    rasterizer.strokeLines(feature.parts, hit.longitudeShift, parameters_.lineWidth,
+                    rasterizer.strokeLines(feature.parts, hit.longitudeShift, lineWidth,
                                            coverage);
                     break;
                 case GeometryKind::Point:
@@ -223,6 +226,7 @@ Result<std::unique_ptr<Source>> RasterizeSource::create(const SourceBuildContext
     p.outline = reader.optionalNumber("outline").value_or(0.0);
     p.lineWidth = reader.optionalNumber("line_width").value_or(10.0);
     p.pointRadius = reader.optionalNumber("point_radius").value_or(5.0);
+    p.minimumTexels = reader.optionalNumber("minimum_texels").value_or(0.0);
     p.opacity = reader.optionalNumber("opacity").value_or(1.0);
     if (std::optional<Color> c = reader.color("color")) {
         p.color = {srgbToLinear(c->r), srgbToLinear(c->g), srgbToLinear(c->b)};

@@ -199,7 +199,8 @@ TEST(PlantsSource, UniqueAcrossBordersAndMinimumSpacingHeld) {
     for (const PlantInstance& i : near.value()) {
         nearSet.insert({i.longitude, i.latitude});
     }
-    for (const PlantInstance& i : plants->instances(centre, evaluator).value()->instances) {
+    const std::shared_ptr<const InstanceTile> centreTile = plants->instances(centre, evaluator).value();
+    for (const PlantInstance& i : centreTile->instances) {
         EXPECT_EQ(nearSet.count({i.longitude, i.latitude}), 1u);
     }
     for (const Position& p : nearSet) {
@@ -240,6 +241,26 @@ TEST(PlantsSource, IdenticalAcrossRunsOrdersAndThreads) {
         EXPECT_EQ(r, first);
     }
     ASSERT_GT(first.size(), 1000u);
+    // A tile's instances are exactly those of its four children.
+    TileEvaluator evaluator(TileFormat{64, 2});
+    std::vector<std::tuple<double, double, std::uint32_t, float, float, float, double>> parent, children;
+    const std::shared_ptr<const InstanceTile> parentTile = plants->instances(centre, evaluator).value();
+    for (const PlantInstance& i : parentTile->instances) {
+        parent.push_back(key(i));
+    }
+    for (int c = 0; c < 4; ++c) {
+        TileKey child = centre;
+        child.level += 1;
+        child.x = 2 * centre.x + (c & 1);
+        child.y = 2 * centre.y + (c >> 1);
+        const std::shared_ptr<const InstanceTile> childTile = plants->instances(child, evaluator).value();
+        for (const PlantInstance& i : childTile->instances) {
+            children.push_back(key(i));
+        }
+    }
+    std::sort(parent.begin(), parent.end());
+    std::sort(children.begin(), children.end());
+    EXPECT_EQ(parent, children);
 }
 
 std::filesystem::path writeGeoJson(const std::string& name, const std::string& text) {

@@ -27,7 +27,10 @@
 //    is exactly the requested one (p is capped at 1, which only bites within a few
 //    cells of the poles; cells touching a pole hold no candidate);
 //  - the instance belongs to the tile of the requested level that contains it
-//    (half-open bounds), and its mask and elevation are sampled from that tile.
+//    (half-open bounds); its density and elevation are sampled (bilinearly) from the
+//    tiles of sampleLevel() (texels of at most two cells, longitude reduction 0),
+//    whatever level is requested, so a tile's instances are exactly those of its four
+//    children, and the inputs are never evaluated finer than the instances need.
 // This trades the irregularity of true dart-throwing Poisson-disk sampling for
 // exact density control and tile independence; the seed's distributions (001 ch. 3)
 // are statistical placements of the same kind.
@@ -86,6 +89,9 @@ public:
 
     // The coarsest level whose tiles hold at most a few million cells.
     int minimumLevel() const;
+    // The level (longitude reduction 0) whose tiles the density and elevation are
+    // sampled from: the coarsest with texels of at most two cells.
+    int sampleLevel() const { return sampleLevel_; }
     double cellSize() const { return cellSize_; }  // metres
     const std::vector<std::string>& speciesNames() const { return speciesNames_; }
 
@@ -108,6 +114,7 @@ private:
     double cellSize_ = 10.0;
     double rowHeight_ = 0.0;  // radians of latitude
     int rows_ = 0;
+    int sampleLevel_ = 0;
 };
 
 }  // namespace sylva

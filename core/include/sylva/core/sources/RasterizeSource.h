@@ -11,6 +11,9 @@
 //    vegetation renderer exists), coloured colour x instance tint; instances of the
 //    neighbour tiles that reach into this tile are drawn too, so discs are seamless.
 //    Tiles coarser than the plants source's minimumLevel() are left transparent.
+// With minimum_texels > 0, lines and outlines are widened to at least that many texels
+// of the tile's north-south texel size (a map-like display choice; widths are then
+// no longer metric in coarse tiles).
 // Colour: `color`, or per feature from `color_attribute`, either a hex string
 // ("#1a8c3f" or "1a8c3f", sRGB) or a key of the `colors` mapping. Features are
 // composited in file order with the "over" operator. Colours are sRGB as written and
@@ -37,6 +40,9 @@ struct RasterizeParameters {
     double outline = 0.0;      // metres; 0: none
     double lineWidth = 10.0;   // metres
     double pointRadius = 5.0;  // metres
+    // Lines and outlines are drawn at least this many texels wide (0: exactly their
+    // width), so thin lines stay visible in coarse tiles, as on a map.
+    double minimumTexels = 0.0;
     glm::vec3 color{1.0f};     // linear RGB
     double opacity = 1.0;
     std::string colorAttribute;
