@@ -1,6 +1,7 @@
 // `sylva bench SUITE [--json]`: benchmark suites, dispatched from one table so other
 // suites can be added as one line each. Suite `dsl` parses, resolves and checks a
-// generated project of 5,000 lines (500 sources, 20 scenarios, 50 cameras).
+// generated project of 5,000 lines (500 sources, 20 scenarios, 50 cameras). Suite
+// `vector` measures rasterize (polygons with outlines) and plants (scattering) tiles.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -12,7 +13,19 @@
 #include "CommandLine.h"
 #include "Commands.h"
 #include "ProjectSession.h"
+#include "sylva/core/geo/Geodesy.h"
+#include "sylva/core/sources/ConstantSource.h"
+#include "sylva/core/sources/MaskSource.h"
+#include "sylva/core/sources/PlantsSource.h"
+#include "sylva/core/sources/RasterizeSource.h"
+#include "sylva/core/tiles/TileEvaluator.h"
 #include "sylva/dsl/ProjectLoader.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <random>
 
 namespace sylva::app {
 
@@ -102,6 +115,113 @@ int benchDsl(std::vector<Metric>& metrics) {
     return 0;
 }
 
+// Tiles of `level` over a 0.5° square near Olinda.
+std::vector<TileKey> benchTiles(int level) {
+    constexpr double kDegree = std::numbers::pi / 180.0;
+    std::vector<TileKey> keys;
+    TileKey probe;
+    probe.level = level;
+    auto column = [&](double lon) {
+        return int(std::floor((lon * kDegree + std::numbers::pi) / (2 * std::numbers::pi) * probe.columns()));
+    };
+    auto row = [&](double lat) {
+        return int(std::floor((std::numbers::pi / 2 - lat * kDegree) / std::numbers::pi * probe.rows()));
+    };
+    for (int y = row(-7.75); y <= row(-8.25); ++y) {
+        for (int x = column(-35.25); x <= column(-34.75); ++x) {
+            TileKey key = probe;
+            key.x = x;
+            key.y = y;
+            keys.push_back(key);
+        }
+    }
+    return keys;
+}
+
+int benchVector(std::vector<Metric>& metrics) {
+    constexpr double kDegree = std::numbers::pi / 180.0;
+    // 300 polygons (64-gons, 0.2-2 km radius) in a GeoJSON file.
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> lon(-35.25, -34.75), lat(-8.25, -7.75), radius(200.0, 2000.0);
+    std::string text = R"({"type":"FeatureCollection","features":[)";
+    for (int i = 0; i < 300; ++i) {
+        const double cLat = lat(random) * kDegree, cLon = lon(random) * kDegree, r = radius(random);
+        append(text, {i ? "," : "", R"({"type":"Feature","properties":{},"geometry":{"type":"Polygon","coordinates":[[)"});
+        for (int k = 0; k <= 64; ++k) {
+            double pLat = 0.0, pLon = 0.0;
+            Geodesy::destination(cLat, cLon, 2 * std::numbers::pi * (k % 64) / 64, r, pLat, pLon);
+            const std::string x = std::to_string(pLon / kDegree), y = std::to_string(pLat / kDegree);
+            append(text, {k ? "," : "", "[", x, ",", y, "]"});
+        }
+        append(text, {"]]}}"});
+    }
+    append(text, {"]}"});
+    const std::filesystem::path file = std::filesystem::temp_directory_path() / "sylva-bench-vector.geojson";
+    std::ofstream(file) << text;
+    FeatureSource features("polygons", file, {});
+    RasterizeParameters parameters;
+    parameters.outline = 20.0;
+    RasterizeSource rasterize("rasterize", &features, nullptr, parameters);
+    if (!features.collection()) {
+        return 1;
+    }
+    auto rate = [](const std::function<int()>& pass, double& perSecond) {
+        const auto start = std::chrono::steady_clock::now();
+        const int count = pass();
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        perSecond = count / seconds;
+        return count;
+    };
+    double rasterizeRate = 0.0;
+    rate([&] {
+        TileEvaluator evaluator(TileFormat{256, 2});
+        int count = 0;
+        for (int level = 11; level <= 13; ++level) {
+            for (const TileKey& key : benchTiles(level)) {
+                count += evaluator.tile(rasterize, key) ? 1 : 0;
+            }
+        }
+        return count;
+    }, rasterizeRate);
+    metrics.push_back({"rasterize_tiles_per_s", rasterizeRate});
+
+    const ConstantSource ground("ground", 20.0);
+    const ConstantSource grey("grey", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
+    MaskParameters maskParameters;
+    maskParameters.expression = "0.8";
+    Result<std::unique_ptr<MaskSource>> mask = MaskSource::make("density", {&grey}, maskParameters);
+    PlantsParameters plantsParameters;
+    plantsParameters.perHectare = 150.0;
+    plantsParameters.spacing = 3.0;
+    plantsParameters.species = {{"broadleaf", 0.7}, {"palm", 0.3}};
+    Result<std::unique_ptr<PlantsSource>> plants =
+        mask ? PlantsSource::make("plants", &ground, mask.value().get(), nullptr, plantsParameters)
+             : Result<std::unique_ptr<PlantsSource>>(mask.error());
+    if (!plants) {
+        return 1;
+    }
+    double plantsRate = 0.0;
+    std::size_t instances = 0;
+    const int tiles = rate([&] {
+        TileEvaluator evaluator(TileFormat{256, 2});
+        int count = 0;
+        for (const TileKey& key : benchTiles(14)) {
+            if (count == 32) {
+                break;
+            }
+            Result<std::shared_ptr<const InstanceTile>> tile = plants.value()->instances(key, evaluator);
+            if (tile) {
+                instances += tile.value()->instances.size();
+                ++count;
+            }
+        }
+        return count;
+    }, plantsRate);
+    metrics.push_back({"plants_tiles_per_s_level14", plantsRate});
+    metrics.push_back({"plants_instances_per_tile", tiles ? double(instances) / tiles : 0.0});
+    return 0;
+}
+
 struct Suite {
     const char* name;
     std::function<int(std::vector<Metric>&)> run;
@@ -110,6 +230,7 @@ struct Suite {
 // One line per suite.
 const Suite kSuites[] = {
     {"dsl", benchDsl},
+    {"vector", benchVector},
 };
 
 }  // namespace

@@ -120,6 +120,8 @@ AttributeSchema listOf(std::string name, ValueType element, Dimension dimension,
 // port depends on their attributes (`kind`, or the inputs), so their schema output is `none`
 // and the graph builder checks the actual port types.
 void addImageSourceKinds(SchemaRegistry& registry);
+// The vector kinds of core/sources/{Feature,Rasterize,ElevationEdit,Plants}Source.cpp.
+void addVectorSourceKinds(SchemaRegistry& registry);
 
 SchemaRegistry makeBuiltin() {
     SchemaRegistry registry;
@@ -189,6 +191,7 @@ SchemaRegistry makeBuiltin() {
                  "Slope where the surface is fully rock.")}});
 
     addImageSourceKinds(registry);
+    addVectorSourceKinds(registry);
 
     registry.add({"scenario", "", PortType::None,
                   "A state of the landscape: the layers the terrain is made of. Elevation, "
@@ -388,6 +391,124 @@ void addImageSourceKinds(SchemaRegistry& registry) {
     registry.setOutputFrom("constant", "kind");
     registry.setOutputFrom("adjust", "input");
     registry.setOutputFrom("blend", "base");
+}
+
+AttributeSchema requiredString(std::string name, std::string doc) {
+    AttributeSchema a = simple(std::move(name), ValueType::String, std::nullopt, std::move(doc));
+    a.required = true;
+    return a;
+}
+
+void addVectorSourceKinds(SchemaRegistry& registry) {
+    registry.add(
+        {"source", "features", PortType::Features,
+         "Vector features from any OGR data set (Shapefile, GeoJSON, GeoPackage, KML ...) in any CRS: "
+         "one layer, optionally filtered by an OGR SQL attribute filter, reprojected to WGS84 "
+         "longitude/latitude and kept in memory with a spatial index (an STR-packed R-tree), loaded "
+         "once per content on first use. Features crossing the antimeridian stay whole; rings around "
+         "a pole are closed along it. Consumed by rasterize, elevation_edit and plants (features are "
+         "not a terrain layer). An unreadable file, a missing layer, a filter naming a missing field "
+         "or broken geometry (invalid, empty, unclosed rings; see `invalid`) fail with one message "
+         "naming the file, layer, feature or field and the reason.",
+         {requiredString("file", "Path of the data set, relative to the project file."),
+          simple("layer", ValueType::String, text(""), "Layer name; the first layer when empty."),
+          simple("where", ValueType::String, text(""),
+                 "OGR SQL attribute filter, e.g. \"continent = 'South America'\"; every feature when empty."),
+          wordChoice("invalid", {"error", "skip", "repair"}, "error",
+                     "Broken geometry: fail (naming the feature), leave the feature out, or repair it "
+                     "(OGR MakeValid).")}});
+
+    registry.add(
+        {"source", "rasterize", PortType::None,
+         "Draws features (or plant instances as crown discs) into a mask (coverage in [0, 1]) or an "
+         "image (linear RGB + alpha = coverage), anti-aliased: polygons by exact area coverage, lines, "
+         "outlines and discs by box-filtered cross-sections, with widths in metres on the ellipsoid "
+         "(right at any latitude). Features composite in file order. Colour: `color`, or per feature "
+         "from `color_attribute` as a hex string (\"#1a8c3f\") or through the `colors` mapping. "
+         "Instances: discs of point_radius x instance scale, colour x instance tint, drawn from the "
+         "plants source's minimum level on (coarser tiles stay transparent).",
+         {port("features", PortType::Features, false, "Features to draw (or `instances`)."),
+          port("instances", PortType::Instances, false, "Plant instances to draw as discs (or `features`)."),
+          wordChoice("kind", {"image", "mask"}, "image", "Output: an image (colour + alpha) or a mask."),
+          simple("fill", ValueType::Bool, boolean(true), "Fill polygons."),
+          number("outline", Dimension::Length, 0.0, 0.0, 1e6,
+                 "Width of polygon outlines in metres, centred on the boundary; 0: none."),
+          number("line_width", Dimension::Length, 10.0, 0.0, 1e6, "Width of line features in metres."),
+          number("point_radius", Dimension::Length, 5.0, 0.0, 1e6,
+                 "Radius of point features in metres (instances: times their scale)."),
+          number("minimum_texels", Dimension::None, 0.0, 0.0, 16.0,
+                 "Lines and outlines are at least this many texels wide, so they stay visible in "
+                 "coarse tiles (far views); 0: exactly their width in metres."),
+          simple("color", ValueType::Color, color(1.0f, 1.0f, 1.0f), "Fixed colour (sRGB)."),
+          simple("color_attribute", ValueType::String, text(""),
+                 "Attribute giving each feature's colour: a hex string, or a key of `colors`."),
+          simple("colors", ValueType::Object, std::nullopt,
+                 "Mapping from attribute values to colours, e.g. { forest = #1a5c2a, water = #1f4e8c }."),
+          number("opacity", Dimension::Ratio, 1.0, 0.0, 1.0, "Scales the coverage.")}});
+
+    registry.add(
+        {"source", "elevation_edit", PortType::Elevation,
+         "Reshapes an elevation with polygons (dams, embankments, pits, cut slopes): flatten to "
+         "`height`, raise or lower by `amount`, or slope (the plane through the polygon's centroid at "
+         "`height` rising with `gradient` towards `direction`). Weight 1 inside, smoothstep over "
+         "`feather` metres outside the boundary (without feather: the texel's exact area coverage); "
+         "h = h0 + w (target - h0), or h0 +- w amount. Values may come per feature from attributes.",
+         {port("input", PortType::None, true, "The elevation to edit (any source giving elevation)."),
+          port("features", PortType::Features, true, "Polygons to apply, in order."),
+          wordChoice("mode", {"flatten", "raise", "lower", "slope"}, "flatten", "The edit."),
+          number("height", Dimension::Length, 0.0, -1e5, 1e5,
+                 "Target height above the ellipsoid (flatten), or the plane's height at the centroid (slope)."),
+          number("amount", Dimension::Length, 0.0, 0.0, 1e5, "Height change (raise, lower)."),
+          number("gradient", Dimension::Ratio, 0.0, -100.0, 100.0,
+                 "Slope of the plane, rise per horizontal distance (slope; 10% = 1 m per 10 m)."),
+          number("direction", Dimension::Angle, 0.0, -360 * kDegree, 360 * kDegree,
+                 "Azimuth the plane rises towards, clockwise from north (slope)."),
+          number("feather", Dimension::Length, 0.0, 0.0, 1e6,
+                 "Width of the smooth transition outside the polygon, in metres."),
+          simple("height_attribute", ValueType::String, text(""),
+                 "Attribute with each polygon's height in metres (flatten, slope)."),
+          simple("amount_attribute", ValueType::String, text(""),
+                 "Attribute with each polygon's amount in metres (raise, lower).")}});
+
+    {
+        AttributeSchema scale = listOf("scale", ValueType::Number, Dimension::None, false,
+                                       "[minimum, maximum] of the random uniform scale; default [0.8, 1.2].");
+        registry.add(
+            {"source", "plants", PortType::Instances,
+             "Plant instances on the terrain (position, species, scale, rotation, tint) from point "
+             "features and by scattering over a density mask and/or polygons: one candidate per cell of "
+             "a fixed global grid (about 100 m / sqrt(per_hectare) wide), jittered inside the cell shrunk "
+             "by spacing / 2 so neighbours are never closer than `spacing`, kept with probability "
+             "density x per_hectare x cell area, so counts match the density exactly in expectation. "
+             "Every cell's randomness comes from (seed, cell), so instances are identical whatever the "
+             "tile, worker count or request order, and each instance belongs to exactly one tile. "
+             "Heights come from `elevation`. Species mix by share for scattering; for points from "
+             "`species_attribute` (through `species_map`). Drawn as crown markers by rasterize until "
+             "the vegetation renderer exists.",
+             {port("elevation", PortType::None, true,
+                   "Terrain the instances stand on (any source giving elevation)."),
+              port("density", PortType::Mask, false, "Density in [0, 1] (times per_hectare)."),
+              port("features", PortType::Features, false,
+                   "Points (one instance each) and/or polygons (scattered over)."),
+              number("per_hectare", Dimension::None, 100.0, 0.01, 1e4,
+                     "Instances per hectare where the density is 1 (inside polygons)."),
+              number("spacing", Dimension::Length, 0.0, 0.0, 1e4,
+                     "Minimum distance between scattered instances, in metres (less than the cell size)."),
+              simple("species", ValueType::Object, std::nullopt,
+                     "Species mix for scattering: { name = share, ... }, e.g. { oak = 60%, pine = 40% }."),
+              simple("species_attribute", ValueType::String, text(""),
+                     "Points: attribute naming each point's species."),
+              simple("species_map", ValueType::Object, std::nullopt,
+                     "Points: attribute value -> species name, e.g. { \"Quercus robur\" = \"oak\" }; a value "
+                     "not in the map is an error."),
+              scale,
+              simple("scale_attribute", ValueType::String, text(""), "Points: attribute with the scale."),
+              simple("rotation_attribute", ValueType::String, text(""),
+                     "Points: attribute with the rotation in degrees clockwise from north; random otherwise."),
+              number("tint_variation", Dimension::Ratio, 0.1, 0.0, 1.0,
+                     "Tint brightness is uniform in [1 - v, 1 + v]."),
+              number("seed", Dimension::None, 1, 0, 2147483647, "Random seed of the scattering.")}});
+    }
 }
 
 }  // namespace

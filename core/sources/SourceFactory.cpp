@@ -3,11 +3,15 @@
 #include "sylva/core/sources/AdjustSource.h"
 #include "sylva/core/sources/BlendSource.h"
 #include "sylva/core/sources/ConstantSource.h"
+#include "sylva/core/sources/ElevationEditSource.h"
+#include "sylva/core/sources/FeatureSource.h"
 #include "sylva/core/sources/HypsometricSource.h"
 #include "sylva/core/sources/MaskSource.h"
 #include "sylva/core/sources/NoiseSource.h"
 #include "sylva/core/sources/NormalMapSource.h"
+#include "sylva/core/sources/PlantsSource.h"
 #include "sylva/core/sources/RasterSource.h"
+#include "sylva/core/sources/RasterizeSource.h"
 
 namespace sylva {
 
@@ -25,6 +29,10 @@ SourceCreator findSourceCreator(std::string_view kind) {
         {"adjust", &AdjustSource::create},
         {"blend", &BlendSource::create},
         {"mask", &MaskSource::create},
+        {"features", &FeatureSource::create},
+        {"rasterize", &RasterizeSource::create},
+        {"elevation_edit", &ElevationEditSource::create},
+        {"plants", &PlantsSource::create},
     };
     for (const Entry& entry : kTable) {
         if (entry.kind == kind) {
