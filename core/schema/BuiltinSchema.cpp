@@ -453,7 +453,7 @@ void addVectorSourceKinds(SchemaRegistry& registry) {
          "`height` rising with `gradient` towards `direction`). Weight 1 inside, smoothstep over "
          "`feather` metres outside the boundary (without feather: the texel's exact area coverage); "
          "h = h0 + w (target - h0), or h0 +- w amount. Values may come per feature from attributes.",
-         {port("input", PortType::None, true, "The elevation to edit (any source giving elevation)."),
+         {port("input", PortType::Elevation, true, "The elevation to edit."),
           port("features", PortType::Features, true, "Polygons to apply, in order."),
           wordChoice("mode", {"flatten", "raise", "lower", "slope"}, "flatten", "The edit."),
           number("height", Dimension::Length, 0.0, -1e5, 1e5,
@@ -485,7 +485,7 @@ void addVectorSourceKinds(SchemaRegistry& registry) {
              "Heights come from `elevation`. Species mix by share for scattering; for points from "
              "`species_attribute` (through `species_map`). Drawn as crown markers by rasterize until "
              "the vegetation renderer exists.",
-             {port("elevation", PortType::None, true,
+             {port("elevation", PortType::Elevation, true,
                    "Terrain the instances stand on (any source giving elevation)."),
               port("density", PortType::Mask, false, "Density in [0, 1] (times per_hectare)."),
               port("features", PortType::Features, false,
@@ -509,6 +509,7 @@ void addVectorSourceKinds(SchemaRegistry& registry) {
                      "Tint brightness is uniform in [1 - v, 1 + v]."),
               number("seed", Dimension::None, 1, 0, 2147483647, "Random seed of the scattering.")}});
     }
+    registry.setOutputFrom("rasterize", "kind");
 }
 
 }  // namespace
