@@ -1,9 +1,15 @@
-// `sylva render PROJECT [--views NAME] [--out DIR] [--size WxH] [--gl egl|osmesa|glfw] [-D name=value]`
-// Renders every view of the project (or of one views block) and writes each image
-// atomically. Exit code 0 only when every image was written.
+// `sylva render PROJECT [--views NAME] [--out DIR] [--size WxH] [--gl egl|osmesa|glfw]
+//                       [--resume] [--shard i/N] [--progress auto|json|plain] [-D name=value]`
+// Renders the view series of the project (or of one views block): cameras and path
+// frames × scenarios × times (the sun from each time, NOAA), then the compare/blend
+// images and a contact sheet per series. Every image is written atomically and
+// recorded in a manifest; --resume skips images whose record matches; Ctrl-C stops
+// after the current image. Exit code 0 only when every image was written.
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -13,8 +19,15 @@
 #include "CommandLine.h"
 #include "Commands.h"
 #include "ProjectSession.h"
+#include "sylva/core/base/Hash.h"
+#include "sylva/core/geo/SolarPosition.h"
+#include "sylva/core/image/ContactSheet.h"
+#include "sylva/core/image/ImageComparison.h"
 #include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/scene/BlockReader.h"
+#include "sylva/core/scene/CameraPath.h"
+#include "sylva/core/scene/RenderManifest.h"
+#include "sylva/core/scene/ViewSeries.h"
 #include "sylva/core/terrain/ElevationQuery.h"
 #include "sylva/core/terrain/LevelVisibility.h"
 #include "sylva/core/tiles/TileEvaluator.h"
@@ -24,18 +37,32 @@
 namespace sylva::app {
 namespace {
 
-struct Job {
-    const Block* views = nullptr;
-    const Block* camera = nullptr;
-    std::string scenario;  // empty: the project's first scenario
-    std::filesystem::path output;
-};
+std::atomic<bool> interrupted{false};
 
-std::string replaceAll(std::string text, const std::string& from, const std::string& to) {
-    for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
-        text.replace(at, from.size(), to);
+void onInterrupt(int) {
+    interrupted.store(true);
+}
+
+std::string kindName(RenderJobKind kind) {
+    return kind == RenderJobKind::Image ? "image"
+                                        : (kind == RenderJobKind::Compare ? "compare" : "blend");
+}
+
+// "today/beach_0900.png" relative to the output folder (for the manifest).
+std::string relativeOutput(const std::filesystem::path& output,
+                           const std::filesystem::path& folder) {
+    return output.lexically_normal().lexically_relative(folder.lexically_normal()).generic_string();
+}
+
+std::string jsonText(const std::string& text) {
+    std::string out = "\"";
+    for (char c : text) {
+        if (c == '"' || c == '\\') {
+            out += '\\';
+        }
+        out += c;
     }
-    return text;
+    return out + "\"";
 }
 
 // Checks that `folder` exists (creating it) and accepts files, before any rendering.
@@ -46,11 +73,13 @@ bool checkWritable(const std::filesystem::path& folder) {
         reportError("cannot create output folder '" + folder.string() + "': " + error.message());
         return false;
     }
-    const std::filesystem::path probe = folder / (".sylva-write-test-" + std::to_string(::getpid()));
+    const std::filesystem::path probe =
+        folder / (".sylva-write-test-" + std::to_string(::getpid()));
     {
         std::ofstream stream(probe);
         if (!stream) {
-            reportError("cannot write to output folder '" + folder.string() + "': permission denied or read-only");
+            reportError("cannot write to output folder '" + folder.string() +
+                        "': permission denied or read-only");
             return false;
         }
     }
@@ -61,8 +90,8 @@ bool checkWritable(const std::filesystem::path& folder) {
 bool parseSize(const std::string& text, int& width, int& height) {
     int w = 0, h = 0;
     char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 1 ||
-        h < 1 || w > 16384 || h > 16384) {
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') ||
+        w < 1 || h < 1 || w > 16384 || h > 16384) {
         return false;
     }
     width = w;
@@ -73,20 +102,31 @@ bool parseSize(const std::string& text, int& width, int& height) {
 }  // namespace
 
 int runRender(const std::vector<std::string>& arguments) {
-    const ParsedCommandLine command =
-        parseCommandLine(arguments, {{"views"}, {"out"}, {"size"}, {"gl"}, {"help", false}});
+    const ParsedCommandLine command = parseCommandLine(arguments, {{"views"},
+                                                                   {"out"},
+                                                                   {"size"},
+                                                                   {"gl"},
+                                                                   {"shard"},
+                                                                   {"progress"},
+                                                                   {"resume", false},
+                                                                   {"help", false}});
     if (command.has("help")) {
-        std::puts("usage: sylva render PROJECT [--views NAME] [--out DIR] [--size WxH] [--gl egl|osmesa|glfw] "
-                  "[-D name=value]");
+        std::puts(
+            "usage: sylva render PROJECT [--views NAME] [--out DIR] [--size WxH] [--gl "
+            "egl|osmesa|glfw]\n"
+            "                    [--resume] [--shard i/N] [--progress auto|json|plain] [-D "
+            "name=value]");
         return 0;
     }
     if (!command.error.empty() || command.positional.size() != 1) {
-        reportError(command.error.empty() ? "render needs exactly one project file (see 'sylva render --help')"
-                                          : command.error);
+        reportError(command.error.empty()
+                        ? "render needs exactly one project file (see 'sylva render --help')"
+                        : command.error);
         return 2;
     }
     int overrideWidth = 0, overrideHeight = 0;
-    if (std::optional<std::string> size = command.get("size"); size && !parseSize(*size, overrideWidth, overrideHeight)) {
+    if (std::optional<std::string> size = command.get("size");
+        size && !parseSize(*size, overrideWidth, overrideHeight)) {
         reportError("--size expects WIDTHxHEIGHT within 1..16384, got '" + *size + "'");
         return 2;
     }
@@ -99,73 +139,68 @@ int runRender(const std::vector<std::string>& arguments) {
         }
         backend = parsed.value();
     }
+    std::pair<int, int> shard{1, 1};
+    if (std::optional<std::string> text = command.get("shard")) {
+        Result<std::pair<int, int>> parsed = ViewSeries::parseShard(*text);
+        if (!parsed) {
+            reportError(parsed.error().message);
+            return 2;
+        }
+        shard = parsed.value();
+    }
+    const std::string progressMode = command.get("progress").value_or("auto");
+    if (progressMode != "auto" && progressMode != "json" && progressMode != "plain") {
+        reportError("--progress expects auto, json or plain, got '" + progressMode + "'");
+        return 2;
+    }
+    const bool progressJson = progressMode == "json";
+    const bool progressBar = progressMode == "auto" && ::isatty(STDERR_FILENO);
 
-    std::optional<ProjectSession> session = ProjectSession::open(command.positional[0], command.defines);
+    std::optional<ProjectSession> session =
+        ProjectSession::open(command.positional[0], command.defines);
     if (!session) {
         return 1;
     }
     const ProjectModel& model = session->model;
 
-    // Expand views x scenarios x cameras into jobs before touching GL or the disk.
-    std::vector<const Block*> viewBlocks;
-    if (std::optional<std::string> name = command.get("views")) {
-        const Block* views = model.findViews(*name);
-        if (views == nullptr) {
-            std::string known;
-            for (const Block& block : model.views) {
-                known += (known.empty() ? "" : ", ") + block.name;
-            }
-            reportError(model.file.string() + ": no views block named '" + *name + "'" +
-                        (known.empty() ? "" : " (the project has: " + known + ")"));
-            return 1;
-        }
-        viewBlocks.push_back(views);
-    } else {
-        for (const Block& block : model.views) {
-            viewBlocks.push_back(&block);
-        }
-    }
-    if (viewBlocks.empty()) {
-        reportError(model.file.string() + ": the project has no views block: nothing to render");
+    // Every job and its output path, before touching GL or the disk.
+    const std::filesystem::path outputFolder = command.get("out").value_or("out");
+    Result<std::vector<RenderJob>> expanded =
+        ViewSeries::expand(model, outputFolder, command.get("views").value_or(""));
+    if (!expanded) {
+        reportError(expanded.error().message);
         return 1;
     }
-    const std::filesystem::path outputFolder = command.get("out").value_or("out");
-    std::vector<Job> jobs;
-    std::map<std::filesystem::path, const Job*> outputs;
-    for (const Block* views : viewBlocks) {
-        BlockReader reader(*views, SchemaRegistry::builtin().find("views"));
-        std::vector<std::string> scenarios = reader.references("scenarios");
-        if (scenarios.empty()) {
-            scenarios.push_back(model.scenarios.empty() ? std::string() : model.scenarios.front().name);
-        }
-        const std::string pattern = reader.string("output", "{camera}.png");
-        for (const std::string& scenario : scenarios) {
-            for (const std::string& cameraName : reader.references("cameras")) {
-                Job job;
-                job.views = views;
-                job.camera = model.findCamera(cameraName);
-                job.scenario = scenario;
-                job.output = outputFolder / replaceAll(replaceAll(pattern, "{camera}", cameraName), "{scenario}", scenario);
-                if (job.camera == nullptr) {
-                    reportError(reader.where("cameras") + "unknown camera '" + cameraName + "'");
-                    return 1;
-                }
-                jobs.push_back(job);
-            }
-        }
-    }
-    for (const Job& job : jobs) {
-        const std::filesystem::path normal = job.output.lexically_normal();
-        if (outputs.count(normal) != 0) {
-            reportError(job.views->location.toString() + ": views '" + job.views->name + "': two images would be written to '" +
-                        normal.string() + "'; put {camera} and {scenario} into the output template");
+    const std::vector<RenderJob>& allJobs = expanded.value();
+    const std::vector<RenderJob> jobs =
+        shard.second > 1 ? ViewSeries::shard(allJobs, shard.first, shard.second) : allJobs;
+    for (const RenderJob& job : jobs) {
+        const std::filesystem::path folder =
+            job.output.has_parent_path() ? job.output.parent_path() : ".";
+        if (!checkWritable(folder)) {
             return 1;
         }
-        outputs[normal] = &job;
     }
-    for (const Job& job : jobs) {
-        const std::filesystem::path folder = job.output.has_parent_path() ? job.output.parent_path() : ".";
-        if (!checkWritable(folder)) {
+    // Paths are checked (keys, heights) before the first image, too.
+    std::map<std::string, CameraPath> paths;
+    for (const RenderJob& job : jobs) {
+        if (!job.path.empty() && !paths.count(job.path)) {
+            Result<CameraPath> path = CameraPath::fromBlock(*model.findPath(job.path));
+            if (!path) {
+                reportError(path.error().message);
+                return 1;
+            }
+            paths.emplace(job.path, std::move(path.value()));
+        }
+    }
+    // Shards keep their own manifest, so parallel processes never write one file.
+    RenderManifest manifest(outputFolder /
+                            (shard.second > 1 ? "manifest.shard-" + std::to_string(shard.first) +
+                                                    "-of-" + std::to_string(shard.second) + ".json"
+                                              : std::string("manifest.json")));
+    if (command.has("resume")) {
+        if (Status loaded = manifest.load(); !loaded) {
+            reportError(loaded.error().message);
             return 1;
         }
     }
@@ -177,107 +212,382 @@ int runRender(const std::vector<std::string>& arguments) {
         settings.height = overrideHeight;
     } else if (const Value* resolution = renderBlock.value("resolution")) {
         const ValueList* list = resolution->get<ValueList>();
-        if (list == nullptr || list->size() != 2 || !(*list)[0].get<Quantity>() || !(*list)[1].get<Quantity>()) {
+        if (list == nullptr || list->size() != 2 || !(*list)[0].get<Quantity>() ||
+            !(*list)[1].get<Quantity>()) {
             reportError(renderBlock.where("resolution") + "resolution must be [width, height]");
             return 1;
         }
         settings.width = static_cast<int>((*list)[0].get<Quantity>()->value);
         settings.height = static_cast<int>((*list)[1].get<Quantity>()->value);
-        if (settings.width < 1 || settings.height < 1 || settings.width > 16384 || settings.height > 16384) {
-            reportError(renderBlock.where("resolution") + "resolution must be within 1..16384 pixels");
+        if (settings.width < 1 || settings.height < 1 || settings.width > 16384 ||
+            settings.height > 16384) {
+            reportError(renderBlock.where("resolution") +
+                        "resolution must be within 1..16384 pixels");
             return 1;
         }
     }
     const GeoPosition sun = renderBlock.geo("sun").value_or(GeoPosition{0.4, 0.35, std::nullopt});
-    settings.sunDirection = Ellipsoid::surfaceNormal(sun.latitude, sun.longitude);
+    const glm::dvec3 defaultSun = Ellipsoid::surfaceNormal(sun.latitude, sun.longitude);
     settings.atmosphere = renderBlock.boolean("atmosphere", true);
     settings.ocean = renderBlock.boolean("ocean", true);
     settings.exposure = renderBlock.optionalNumber("exposure").value_or(1.0);
     render::TerrainSettings terrainSettings;
-    terrainSettings.maxLevel = static_cast<int>(renderBlock.optionalNumber("max_level").value_or(24));
+    terrainSettings.maxLevel =
+        static_cast<int>(renderBlock.optionalNumber("max_level").value_or(24));
 
-    render::ContextOptions contextOptions;
-    contextOptions.backend = backend;
-    Result<std::unique_ptr<render::GlContext>> context = render::GlContext::create(contextOptions);
-    if (!context) {
-        reportError(context.error().message);
-        return 1;
-    }
+    // What decides a job's pixels, for --resume: the sources of its scenario (their
+    // hashes cover parameters and the files they read), camera or path, settings, time.
+    auto settingsHash = [&](ContentHash& hash) {
+        hash.add(model.render.contentHash).add(settings.width).add(settings.height);
+    };
+
+    std::signal(SIGINT, onInterrupt);
+    std::signal(SIGTERM, onInterrupt);
+
+    std::unique_ptr<render::GlContext> context;
+    std::unique_ptr<render::SceneRenderer> renderer;
     const render::ShaderLibrary library;
-    Result<std::unique_ptr<render::SceneRenderer>> renderer = render::SceneRenderer::create(library, terrainSettings);
-    if (!renderer) {
-        reportError(renderer.error().message);
-        return 1;
-    }
+    auto ensureRenderer = [&]() -> Status {
+        if (renderer) {
+            return {};
+        }
+        render::ContextOptions contextOptions;
+        contextOptions.backend = backend;
+        Result<std::unique_ptr<render::GlContext>> created =
+            render::GlContext::create(contextOptions);
+        if (!created) {
+            return created.error();
+        }
+        context = std::move(created.value());
+        Result<std::unique_ptr<render::SceneRenderer>> made =
+            render::SceneRenderer::create(library, terrainSettings);
+        if (!made) {
+            return made.error();
+        }
+        renderer = std::move(made.value());
+        return {};
+    };
     TileEvaluator evaluator(TileFormat{terrainSettings.clipmapSize, 2});
 
     int failures = 0;
     int degraded = 0;
-    for (const Job& job : jobs) {
+    int skipped = 0;
+    std::map<std::size_t, std::uint64_t> jobHashes;  // by job index, for comparisons
+    const auto seriesStart = std::chrono::steady_clock::now();
+    std::size_t done = 0;
+    auto progress = [&](const RenderJob& job, double seconds, std::size_t tiles, bool skippedJob) {
+        ++done;
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - seriesStart).count();
+        const double eta =
+            done > 0 ? elapsed / static_cast<double>(done) * static_cast<double>(jobs.size() - done)
+                     : 0;
+        if (progressJson) {
+            std::printf(
+                "{\"event\": \"image\", \"index\": %zu, \"total\": %zu, \"output\": %s, \"kind\": "
+                "\"%s\", "
+                "\"skipped\": %s, \"seconds\": %.3f, \"tiles\": %zu, \"eta_s\": %.1f}\n",
+                done, jobs.size(), jsonText(job.output.string()).c_str(),
+                kindName(job.kind).c_str(), skippedJob ? "true" : "false", seconds, tiles, eta);
+            std::fflush(stdout);
+            return;
+        }
+        if (progressBar) {
+            const int width = 30;
+            const int filled =
+                static_cast<int>(width * done / std::max<std::size_t>(jobs.size(), 1));
+            std::fprintf(stderr, "\r[%s%s] %zu/%zu  ETA %4.0f s  ",
+                         std::string(static_cast<std::size_t>(filled), '#').c_str(),
+                         std::string(static_cast<std::size_t>(width - filled), '.').c_str(), done,
+                         jobs.size(), eta);
+            if (done == jobs.size()) {
+                std::fputc('\n', stderr);
+            }
+            std::fflush(stderr);
+        }
+    };
+
+    for (const RenderJob& job : jobs) {
+        if (interrupted.load()) {
+            break;
+        }
         const auto start = std::chrono::steady_clock::now();
+        const std::string relative = relativeOutput(job.output, outputFolder);
+        ManifestEntry entry;
+        entry.output = relative;
+        entry.kind = kindName(job.kind);
+        entry.view = job.view;
+        entry.camera = job.camera;
+        entry.path = job.path;
+        entry.frame = job.frame;
+        entry.scenario = job.scenario;
+        entry.time = job.time ? job.time->text() : "";
+
+        if (job.kind != RenderJobKind::Image) {
+            // A comparison of two images of this series, read back from disk.
+            ContentHash hash;
+            hash.add(jobHashes[job.first])
+                .add(jobHashes[job.second])
+                .add(entry.kind)
+                .add(job.scenario);
+            const Block* block = nullptr;
+            for (const Block& candidate :
+                 job.kind == RenderJobKind::Compare ? model.compares : model.blends) {
+                if (candidate.name == job.scenario) {
+                    block = &candidate;
+                }
+            }
+            SYLVA_CHECK(block != nullptr);
+            hash.add(block->contentHash);
+            entry.hash = hash.value();
+            jobHashes[job.index] = entry.hash;
+            if (command.has("resume") && manifest.isCurrent(relative, entry.hash)) {
+                ++skipped;
+                progress(job, 0.0, 0, true);
+                continue;
+            }
+            RgbaImage first, second;
+            Result<std::vector<std::uint8_t>> a =
+                ImageWriter::readRgba8(allJobs[job.first].output, first.width, first.height);
+            Result<std::vector<std::uint8_t>> b =
+                ImageWriter::readRgba8(allJobs[job.second].output, second.width, second.height);
+            if (!a || !b) {
+                reportError(job.output.string() + ": cannot read the images to compare: " +
+                            (!a ? a.error().message : b.error().message));
+                ++failures;
+                continue;
+            }
+            first.pixels = std::move(a.value());
+            second.pixels = std::move(b.value());
+            BlockReader reader(*block, SchemaRegistry::builtin().find(block->keyword));
+            Result<RgbaImage> made = Error{"unknown comparison"};
+            std::string firstName = allJobs[job.first].scenario;
+            std::string secondName = allJobs[job.second].scenario;
+            if (job.kind == RenderJobKind::Blend) {
+                made = ImageComparison::blend(first, second,
+                                              reader.optionalNumber("amount").value_or(0.5));
+            } else {
+                const Value* layout = reader.value("layout");
+                const std::string mode =
+                    layout && layout->get<Word>() ? layout->get<Word>()->text : "swipe";
+                if (mode == "side_by_side") {
+                    made = ImageComparison::sideBySide(first, second);
+                } else if (mode == "difference") {
+                    made = ImageComparison::difference(first, second);
+                } else {
+                    made = ImageComparison::swipe(first, second,
+                                                  reader.optionalNumber("split").value_or(0.5));
+                }
+                if (made && reader.boolean("labels", true) && mode != "difference") {
+                    ImageComparison::label(made.value(), firstName);
+                    ImageComparison::label(made.value(), secondName, true);
+                }
+            }
+            if (!made) {
+                reportError(block->location.toString() + ": " + block->keyword + " '" +
+                            block->name + "': " + made.error().message);
+                ++failures;
+                continue;
+            }
+            const Status written = ImageWriter::writeRgba8(
+                job.output, made.value().width, made.value().height, made.value().pixels);
+            if (!written) {
+                reportError(written.error().message);
+                ++failures;
+                continue;
+            }
+            entry.seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            manifest.record(entry);
+            if (Status saved = manifest.save(); !saved) {
+                reportError(saved.error().message);
+            }
+            if (!progressJson) {
+                std::printf("%s  %dx%d  %.2f s  (%s of %s and %s)\n", job.output.string().c_str(),
+                            made.value().width, made.value().height, entry.seconds,
+                            entry.kind.c_str(), firstName.c_str(), secondName.c_str());
+                std::fflush(stdout);
+            }
+            progress(job, entry.seconds, 0, false);
+            continue;
+        }
+
         const std::size_t tilesBefore = evaluator.statistics().misses;
         // Each scenario renders its own model (overrides applied); unchanged sources
         // keep their content hashes, so their tiles come from the shared cache.
-        Result<std::pair<const ProjectModel*, SourceGraph*>> scenario = session->forScenario(job.scenario);
+        Result<std::pair<const ProjectModel*, SourceGraph*>> scenario =
+            session->forScenario(job.scenario);
         if (!scenario) {
             reportError(scenario.error().message);
             ++failures;
             continue;
         }
-        Result<TerrainLayers> layers = scenario->second->terrainLayers(*scenario->first, job.scenario);
+        Result<TerrainLayers> layers =
+            scenario->second->terrainLayers(*scenario->first, job.scenario);
         if (!layers) {
             reportError(layers.error().message);
             ++failures;
             continue;
         }
+        const Block* cameraBlock = job.camera.empty() ? nullptr : model.findCamera(job.camera);
+        const Block* pathBlock = job.path.empty() ? nullptr : model.findPath(job.path);
+        {
+            ContentHash hash;
+            settingsHash(hash);
+            for (const Source* layer :
+                 {layers.value().elevation, layers.value().color, layers.value().normals}) {
+                hash.add(layer ? layer->contentHash() : 0ull);
+            }
+            hash.add(cameraBlock ? cameraBlock->contentHash : pathBlock->contentHash)
+                .add(job.frame)
+                .add(job.pathTime);
+            hash.add(entry.time);
+            entry.hash = hash.value();
+            jobHashes[job.index] = entry.hash;
+        }
+        if (command.has("resume") && manifest.isCurrent(relative, entry.hash)) {
+            ++skipped;
+            progress(job, 0.0, 0, true);
+            continue;
+        }
+        if (Status ready = ensureRenderer(); !ready) {
+            reportError(ready.error().message);
+            return 1;
+        }
         const ElevationQuery query(*layers.value().elevation, evaluator);
-        const Camera::TerrainHeight terrainHeight = [&](double latitude, double longitude) -> Result<double> {
+        double eyeForLevels = 100.0;
+        double fovForLevels = 1.0;
+        if (cameraBlock) {
+            BlockReader camera(*cameraBlock, SchemaRegistry::builtin().find("camera"));
+            eyeForLevels = camera.optionalNumber("eye_height").value_or(100.0);
+            fovForLevels = camera.optionalNumber("fov").value_or(1.0);
+        }
+        const Camera::TerrainHeight terrainHeight = [&](double latitude,
+                                                        double longitude) -> Result<double> {
             // The ground as the finest ring level under an eye-height camera draws it.
-            BlockReader camera(*job.camera, SchemaRegistry::builtin().find("camera"));
-            const double eye = camera.optionalNumber("eye_height").value_or(100.0);
-            const double fov = camera.optionalNumber("fov").value_or(1.0);
-            const LevelRange levels = LevelVisibility::visibleLevels(eye, eye, terrainSettings.maxTerrainHeight, fov,
-                                                                     settings.height, terrainSettings.maxLevel);
+            const LevelRange levels = LevelVisibility::visibleLevels(
+                eyeForLevels, eyeForLevels, terrainSettings.maxTerrainHeight, fovForLevels,
+                settings.height, terrainSettings.maxLevel);
             Result<double> height = query.groundHeight(latitude, longitude, levels.finest);
             if (height && settings.ocean) {
                 return std::max(height.value(), 0.0);
             }
             return height;
         };
-        Result<Camera> camera = Camera::fromBlock(*job.camera, terrainHeight);
+        Result<Camera> camera = cameraBlock
+                                    ? Camera::fromBlock(*cameraBlock, terrainHeight)
+                                    : paths.at(job.path).sample(job.pathTime, terrainHeight);
+        const std::string what =
+            cameraBlock ? cameraBlock->location.toString() + ": camera '" + job.camera + "'"
+                        : pathBlock->location.toString() + ": path '" + job.path + "' frame " +
+                              std::to_string(job.frame);
         if (!camera) {
             reportError(camera.error().message);
             ++failures;
             continue;
         }
-        Result<render::Image> image = renderer.value()->render(layers.value(), evaluator, camera.value(), settings);
+        // The sun of the job's time (NOAA), else the render block's fixed sun.
+        settings.sunDirection = defaultSun;
+        if (job.time) {
+            const SunPosition position = SolarPosition::at(job.unixSeconds);
+            settings.sunDirection =
+                Ellipsoid::surfaceNormal(position.subsolarLatitude, position.subsolarLongitude);
+        }
+        Result<render::Image> image =
+            renderer->render(layers.value(), evaluator, camera.value(), settings);
         if (!image) {
-            reportError(job.camera->location.toString() + ": camera '" + job.camera->name + "': " + image.error().message);
+            reportError(what + ": " + image.error().message);
             ++failures;
             continue;
         }
-        const Status written = ImageWriter::writeRgba8(job.output, image->width, image->height, image->pixels);
+        const Status written =
+            ImageWriter::writeRgba8(job.output, image->width, image->height, image->pixels);
         if (!written) {
             reportError(written.error().message);
             ++failures;
             continue;
         }
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        const render::RenderStatistics& stats = renderer.value()->statistics();
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const render::RenderStatistics& stats = renderer->statistics();
+        const std::size_t tiles = evaluator.statistics().misses - tilesBefore;
         if (!stats.terrain.degraded.empty()) {
             // The image is written (coarser data is better than none), but the exit
             // status must say that data was missing.
-            reportError(job.camera->location.toString() + ": camera '" + job.camera->name +
-                        "': drawn with coarser terrain: " + stats.terrain.degraded);
+            reportError(what + ": drawn with coarser terrain: " + stats.terrain.degraded);
             ++degraded;
+        } else {
+            entry.seconds = seconds;
+            entry.tilesGenerated = tiles;
+            manifest.record(entry);
+            if (Status saved = manifest.save(); !saved) {
+                reportError(saved.error().message);
+            }
         }
-        std::printf("%s  %dx%d  %.2f s  (levels %d-%d, %llu triangles, %zu tiles)\n", job.output.string().c_str(),
-                    image->width, image->height, seconds, stats.terrain.levels.coarsest, stats.terrain.levels.finest,
-                    static_cast<unsigned long long>(stats.terrain.triangles), evaluator.statistics().misses - tilesBefore);
-        std::fflush(stdout);
+        if (!progressJson) {
+            std::printf("%s  %dx%d  %.2f s  (levels %d-%d, %llu triangles, %zu tiles)\n",
+                        job.output.string().c_str(), image->width, image->height, seconds,
+                        stats.terrain.levels.coarsest, stats.terrain.levels.finest,
+                        static_cast<unsigned long long>(stats.terrain.triangles), tiles);
+            std::fflush(stdout);
+        }
+        progress(job, seconds, tiles, false);
+    }
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+    if (interrupted.load()) {
+        reportError("interrupted: " + std::to_string(done) + " of " + std::to_string(jobs.size()) +
+                    " images done; run again with --resume to finish");
+        return 130;
+    }
+
+    // A contact sheet per views block with more than one image (whole series only:
+    // a shard sees part of it).
+    if (shard.second == 1 && failures == 0) {
+        std::map<std::string, std::vector<ContactSheetEntry>> sheets;
+        for (const RenderJob& job : jobs) {
+            RgbaImage image;
+            Result<std::vector<std::uint8_t>> pixels =
+                ImageWriter::readRgba8(job.output, image.width, image.height);
+            if (!pixels) {
+                continue;
+            }
+            image.pixels = std::move(pixels.value());
+            std::string label =
+                job.path.empty() ? job.camera : job.path + " #" + std::to_string(job.frame);
+            label += " " + job.scenario;
+            if (job.time) {
+                label += " " + job.time->text().substr(11, 5);
+            }
+            sheets[job.view].push_back(
+                {label,
+                 ContactSheet::resize(image, 320,
+                                      std::max(1, 320 * image.height / std::max(image.width, 1)))});
+        }
+        for (const auto& [view, entries] : sheets) {
+            if (entries.size() < 2) {
+                continue;
+            }
+            Result<RgbaImage> sheet = ContactSheet::build(entries, 320);
+            const std::filesystem::path file = outputFolder / (view + "_contact_sheet.png");
+            if (sheet && ImageWriter::writeRgba8(file, sheet.value().width, sheet.value().height,
+                                                 sheet.value().pixels)) {
+                if (!progressJson) {
+                    std::printf("%s  contact sheet of %zu images\n", file.string().c_str(),
+                                entries.size());
+                }
+            }
+        }
+    }
+    if (progressJson) {
+        std::printf(
+            "{\"event\": \"done\", \"total\": %zu, \"skipped\": %d, \"failed\": %d, \"degraded\": "
+            "%d}\n",
+            jobs.size(), skipped, failures, degraded);
     }
     if (failures > 0) {
-        reportError(std::to_string(failures) + " of " + std::to_string(jobs.size()) + " images could not be rendered");
+        reportError(std::to_string(failures) + " of " + std::to_string(jobs.size()) +
+                    " images could not be rendered");
         return 1;
     }
     if (degraded > 0) {

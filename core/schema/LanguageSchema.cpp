@@ -65,7 +65,14 @@ void addLanguageSchema(SchemaRegistry& registry) {
              PortType::None,
              "Two scenarios shown together, e.g. before and after a change.",
              {scenarioReference("left", "Scenario on the left (or before)."),
-              scenarioReference("right", "Scenario on the right (or after)."), layout, split}});
+              scenarioReference("right", "Scenario on the right (or after)."), layout, split, [] {
+                  AttributeSchema labels = attribute("labels", ValueType::Bool,
+                                                     "Draw the scenario names into the image.");
+                  Value yes;
+                  yes.data = true;
+                  labels.defaultValue = yes;
+                  return labels;
+              }()}});
     }
     {
         AttributeSchema amount =

@@ -165,7 +165,7 @@ end
 begin "two cameras writing the same file -> exit 1 before rendering"
 run render "$PROJECTS/same_output.sylva" "${FAST[@]}" --out "$SCRATCH/same"
 expect_rc 1
-expect_stderr "same_output.sylva:13:7: views 'main': two images would be written to '$SCRATCH/same/shot.png'"
+expect_stderr "same_output.sylva:16:5: views 'main': two images would be written to '$SCRATCH/same/shot.png' (camera a, scenario world; camera b, scenario world)"
 # Rejected before any folder is created or GL is touched.
 [ ! -e "$SCRATCH/same" ] || fail "output folder created although nothing may be rendered"
 end
@@ -201,7 +201,9 @@ else
 fi
 leftovers=$(find "$SCRATCH/tiny" -name '.sylva-*' -print)
 [ -z "$leftovers" ] || fail "temporary files left: $leftovers"
-[ "$(find "$SCRATCH/tiny" -type f | wc -l)" -eq 1 ] || fail "unexpected files: $(ls -A "$SCRATCH/tiny")"
+# The image and the batch manifest, nothing else.
+[ "$(find "$SCRATCH/tiny" -type f | wc -l)" -eq 2 ] || fail "unexpected files: $(ls -A "$SCRATCH/tiny")"
+[ -f "$SCRATCH/tiny/manifest.json" ] || fail "no manifest.json"
 end
 
 begin "each scenario renders its own model"
@@ -212,6 +214,81 @@ expect_stdout "$SCRATCH/scenarios/flat/low.png  32x18"
 if cmp -s "$SCRATCH/scenarios/hilly/low.png" "$SCRATCH/scenarios/flat/low.png"; then
     fail "the override of scenario 'flat' did not change its image"
 fi
+end
+
+# --- view series: comparisons, manifest, resume, shards, interruption ------------
+
+SERIES=$PROJECTS/series.sylva
+list_images() { (cd "$1" && find . -name '*.png' ! -name '*contact_sheet*' | sort); }
+
+begin "a view series renders images, comparisons, a contact sheet and a manifest"
+run render "$SERIES" "${FAST[@]}" --out "$SCRATCH/series"
+expect_rc 0
+[ "$(list_images "$SCRATCH/series" | wc -l)" -eq 16 ] || fail "expected 16 images: $(list_images "$SCRATCH/series")"
+for f in today/east_0900.png drought/west_1800.png change/east_0900.png halfway/west_1800.png \
+         photos_contact_sheet.png manifest.json; do
+    [ -s "$SCRATCH/series/$f" ] || fail "missing $f"
+done
+grep -q '"output": "change/east_0900.png"' "$SCRATCH/series/manifest.json" || fail "manifest lacks the comparison"
+grep -q '"time": "2024-06-21T09:00:00+02:00"' "$SCRATCH/series/manifest.json" || fail "manifest lacks the time"
+if cmp -s "$SCRATCH/series/today/east_0900.png" "$SCRATCH/series/today/east_1800.png"; then
+    fail "the sun of 09:00 and 18:00 gave the same image"
+fi
+end
+
+begin "--resume skips every image whose manifest entry matches"
+touch -d '2020-01-01' "$SCRATCH/series/today/east_0900.png"
+run render "$SERIES" "${FAST[@]}" --out "$SCRATCH/series" --resume --progress json
+expect_rc 0
+[ "$(grep -c '"skipped": true' "$OUT")" -eq 16 ] || fail "expected 16 skipped images"
+[ "$(stat -c %Y "$SCRATCH/series/today/east_0900.png")" -lt 1600000000 ] || fail "a current image was rewritten"
+expect_stdout '{"event": "done", "total": 16, "skipped": 16, "failed": 0, "degraded": 0}'
+end
+
+begin "--shard 1/2 and 2/2 render every image exactly once"
+run render "$SERIES" "${FAST[@]}" --out "$SCRATCH/shards" --shard 1/2
+expect_rc 0
+first=$(list_images "$SCRATCH/shards")
+run render "$SERIES" "${FAST[@]}" --out "$SCRATCH/shards" --shard 2/2
+expect_rc 0
+all=$(list_images "$SCRATCH/shards")
+[ "$all" = "$(list_images "$SCRATCH/series")" ] || fail "the two shards do not add up to the series"
+[ "$(echo "$first" | wc -l)" -eq 8 ] || fail "shard 1/2 rendered $(echo "$first" | wc -l) images, expected 8"
+[ -f "$SCRATCH/shards/manifest.shard-1-of-2.json" ] && [ -f "$SCRATCH/shards/manifest.shard-2-of-2.json" ] ||
+    fail "each shard keeps its own manifest"
+run render "$SERIES" "${FAST[@]}" --out "$SCRATCH/shards" --shard 3/2
+expect_rc 2
+expect_stderr "--shard expects i/N with 1 <= i <= N (e.g. 2/4), got '3/2'"
+end
+
+begin "Ctrl-C stops after the current image; --resume finishes only the rest"
+"$SYLVA" render "$SERIES" "${FAST[@]}" --out "$SCRATCH/interrupted" --progress json >"$OUT" 2>"$ERR" &
+pid=$!
+for _ in $(seq 1 600); do
+    grep -q '"event": "image"' "$OUT" 2>/dev/null && break
+    sleep 0.05
+done
+kill -INT "$pid"
+wait "$pid"
+RC=$?
+expect_rc 130
+expect_stderr "interrupted:"
+expect_stderr "run again with --resume to finish"
+partial=$(find "$SCRATCH/interrupted" -name '.sylva-*' -o -name '*.tmp*')
+[ -z "$partial" ] || fail "half-written files left: $partial"
+made=$(list_images "$SCRATCH/interrupted" | wc -l)
+[ "$made" -ge 1 ] && [ "$made" -lt 16 ] || fail "expected a partial series, found $made images"
+run render "$SERIES" "${FAST[@]}" --out "$SCRATCH/interrupted" --resume --progress json
+expect_rc 0
+[ "$(grep -c '"skipped": true' "$OUT")" -eq "$made" ] || fail "resume did not skip exactly the $made finished images"
+[ "$(list_images "$SCRATCH/interrupted" | wc -l)" -eq 16 ] || fail "resume did not complete the series"
+end
+
+begin "a time without a zone is a located error before rendering"
+run render "$PROJECTS/zoneless.sylva" "${FAST[@]}" --out "$SCRATCH/zoneless"
+expect_rc 1
+expect_stderr "zoneless.sylva:5:14: views 'photos': time 2024-06-21T09:00:00 has no zone"
+[ ! -e "$SCRATCH/zoneless" ] || fail "output folder created although nothing may be rendered"
 end
 
 # --- check ----------------------------------------------------------------------
