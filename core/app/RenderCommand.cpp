@@ -17,7 +17,7 @@
 #include "sylva/core/scene/BlockReader.h"
 #include "sylva/core/terrain/ElevationQuery.h"
 #include "sylva/core/terrain/LevelVisibility.h"
-#include "sylva/core/tiles/TileEvaluator.h"
+#include "sylva/core/tiles/Scheduler.h"
 #include "sylva/render/GlContext.h"
 #include "sylva/render/SceneRenderer.h"
 
@@ -74,10 +74,10 @@ bool parseSize(const std::string& text, int& width, int& height) {
 
 int runRender(const std::vector<std::string>& arguments) {
     const ParsedCommandLine command =
-        parseCommandLine(arguments, {{"views"}, {"out"}, {"size"}, {"gl"}, {"help", false}});
+        parseCommandLine(arguments, {{"views"}, {"out"}, {"size"}, {"gl"}, {"cache-mb"}, {"help", false}});
     if (command.has("help")) {
         std::puts("usage: sylva render PROJECT [--views NAME] [--out DIR] [--size WxH] [--gl egl|osmesa|glfw] "
-                  "[-D name=value]");
+                  "[--cache-mb N] [-D name=value]");
         return 0;
     }
     if (!command.error.empty() || command.positional.size() != 1) {
@@ -89,6 +89,15 @@ int runRender(const std::vector<std::string>& arguments) {
     if (std::optional<std::string> size = command.get("size"); size && !parseSize(*size, overrideWidth, overrideHeight)) {
         reportError("--size expects WIDTHxHEIGHT within 1..16384, got '" + *size + "'");
         return 2;
+    }
+    std::size_t cacheMegabytes = 1024;
+    if (std::optional<std::string> cache = command.get("cache-mb")) {
+        const std::optional<std::size_t> parsed = parseCacheMegabytes(*cache);
+        if (!parsed) {
+            reportError("--cache-mb expects a tile cache budget in MiB within 16..1048576, got '" + *cache + "'");
+            return 2;
+        }
+        cacheMegabytes = *parsed;
     }
     std::optional<render::GlBackend> backend;
     if (std::optional<std::string> gl = command.get("gl")) {
@@ -209,13 +218,19 @@ int runRender(const std::vector<std::string>& arguments) {
         reportError(renderer.error().message);
         return 1;
     }
-    TileEvaluator evaluator(TileFormat{terrainSettings.clipmapSize, 2});
+    // Tiles come from the concurrent scheduler (one worker per core); every image
+    // waits for all its levels (RenderSettings::waitForTiles), so output does not
+    // depend on thread timing.
+    SchedulerOptions schedulerOptions;
+    schedulerOptions.format = TileFormat{terrainSettings.clipmapSize, 2};
+    schedulerOptions.budgetBytes = cacheMegabytes << 20;
+    Scheduler evaluator(schedulerOptions);
 
     int failures = 0;
     int degraded = 0;
     for (const Job& job : jobs) {
         const auto start = std::chrono::steady_clock::now();
-        const std::size_t tilesBefore = evaluator.statistics().misses;
+        const std::size_t tilesBefore = evaluator.totals().misses;
         // Each scenario renders its own model (overrides applied); unchanged sources
         // keep their content hashes, so their tiles come from the shared cache.
         Result<std::pair<const ProjectModel*, SourceGraph*>> scenario = session->forScenario(job.scenario);
@@ -273,7 +288,7 @@ int runRender(const std::vector<std::string>& arguments) {
         }
         std::printf("%s  %dx%d  %.2f s  (levels %d-%d, %llu triangles, %zu tiles)\n", job.output.string().c_str(),
                     image->width, image->height, seconds, stats.terrain.levels.coarsest, stats.terrain.levels.finest,
-                    static_cast<unsigned long long>(stats.terrain.triangles), evaluator.statistics().misses - tilesBefore);
+                    static_cast<unsigned long long>(stats.terrain.triangles), evaluator.totals().misses - tilesBefore);
         std::fflush(stdout);
     }
     if (failures > 0) {
