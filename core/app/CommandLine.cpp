@@ -59,4 +59,15 @@ ParsedCommandLine parseCommandLine(const std::vector<std::string>& arguments, co
     return result;
 }
 
+std::optional<std::size_t> parseCacheMegabytes(const std::string& text) {
+    if (text.empty() || text.size() > 7 || text.find_first_not_of("0123456789") != std::string::npos) {
+        return std::nullopt;
+    }
+    const std::size_t value = std::stoul(text);
+    if (value < 16 || value > (1u << 20)) {
+        return std::nullopt;
+    }
+    return value;
+}
+
 }  // namespace sylva::app

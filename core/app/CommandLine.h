@@ -3,6 +3,7 @@
 // separately. Unknown options are usage errors (exit code 2), never ignored.
 #pragma once
 
+#include <cstddef>
 #include <map>
 #include <optional>
 #include <string>
@@ -28,6 +29,10 @@ struct ParsedCommandLine {
         return it == options.end() ? std::nullopt : std::optional<std::string>(it->second);
     }
 };
+
+// The value of `--cache-mb N` (tile cache budget in MiB, 16..1048576); nullopt when
+// it is not such a whole number.
+std::optional<std::size_t> parseCacheMegabytes(const std::string& text);
 
 ParsedCommandLine parseCommandLine(const std::vector<std::string>& arguments, const std::vector<OptionSpec>& specs);
 

@@ -18,9 +18,9 @@
 
 #include "CommandLine.h"
 #include "Commands.h"
+#include "ImageJobs.h"
 #include "ProjectSession.h"
 #include "sylva/core/base/Hash.h"
-#include "sylva/core/geo/SolarPosition.h"
 #include "sylva/core/image/ContactSheet.h"
 #include "sylva/core/image/ImageComparison.h"
 #include "sylva/core/image/ImageWriter.h"
@@ -28,9 +28,7 @@
 #include "sylva/core/scene/CameraPath.h"
 #include "sylva/core/scene/RenderManifest.h"
 #include "sylva/core/scene/ViewSeries.h"
-#include "sylva/core/terrain/ElevationQuery.h"
-#include "sylva/core/terrain/LevelVisibility.h"
-#include "sylva/core/tiles/TileEvaluator.h"
+#include "sylva/core/tiles/Scheduler.h"
 #include "sylva/render/GlContext.h"
 #include "sylva/render/SceneRenderer.h"
 
@@ -114,8 +112,9 @@ int runRender(const std::vector<std::string>& arguments) {
         std::puts(
             "usage: sylva render PROJECT [--views NAME] [--out DIR] [--size WxH] [--gl "
             "egl|osmesa|glfw]\n"
-            "                    [--resume] [--shard i/N] [--progress auto|json|plain] [-D "
-            "name=value]");
+            "                    [--resume] [--shard i/N] [--progress auto|json|plain] [--cache-mb "
+            "N]\n"
+            "                    [-D name=value]");
         return 0;
     }
     if (!command.error.empty() || command.positional.size() != 1) {
@@ -138,6 +137,16 @@ int runRender(const std::vector<std::string>& arguments) {
             return 2;
         }
         backend = parsed.value();
+    }
+    std::size_t cacheMegabytes = 1024;
+    if (std::optional<std::string> cache = command.get("cache-mb")) {
+        const std::optional<std::size_t> parsed = parseCacheMegabytes(*cache);
+        if (!parsed) {
+            reportError("--cache-mb expects a tile cache budget in MiB within 16..1048576, got '" +
+                        *cache + "'");
+            return 2;
+        }
+        cacheMegabytes = *parsed;
     }
     std::pair<int, int> shard{1, 1};
     if (std::optional<std::string> text = command.get("shard")) {
@@ -205,35 +214,14 @@ int runRender(const std::vector<std::string>& arguments) {
         }
     }
 
-    BlockReader renderBlock(model.render, SchemaRegistry::builtin().find("render"));
-    render::RenderSettings settings;
-    if (overrideWidth > 0) {
-        settings.width = overrideWidth;
-        settings.height = overrideHeight;
-    } else if (const Value* resolution = renderBlock.value("resolution")) {
-        const ValueList* list = resolution->get<ValueList>();
-        if (list == nullptr || list->size() != 2 || !(*list)[0].get<Quantity>() ||
-            !(*list)[1].get<Quantity>()) {
-            reportError(renderBlock.where("resolution") + "resolution must be [width, height]");
-            return 1;
-        }
-        settings.width = static_cast<int>((*list)[0].get<Quantity>()->value);
-        settings.height = static_cast<int>((*list)[1].get<Quantity>()->value);
-        if (settings.width < 1 || settings.height < 1 || settings.width > 16384 ||
-            settings.height > 16384) {
-            reportError(renderBlock.where("resolution") +
-                        "resolution must be within 1..16384 pixels");
-            return 1;
-        }
+    Result<RenderSetup> madeSetup = makeRenderSetup(model, overrideWidth, overrideHeight);
+    if (!madeSetup) {
+        reportError(madeSetup.error().message);
+        return 1;
     }
-    const GeoPosition sun = renderBlock.geo("sun").value_or(GeoPosition{0.4, 0.35, std::nullopt});
-    const glm::dvec3 defaultSun = Ellipsoid::surfaceNormal(sun.latitude, sun.longitude);
-    settings.atmosphere = renderBlock.boolean("atmosphere", true);
-    settings.ocean = renderBlock.boolean("ocean", true);
-    settings.exposure = renderBlock.optionalNumber("exposure").value_or(1.0);
-    render::TerrainSettings terrainSettings;
-    terrainSettings.maxLevel =
-        static_cast<int>(renderBlock.optionalNumber("max_level").value_or(24));
+    const RenderSetup setup = madeSetup.value();
+    render::RenderSettings settings = setup.settings;
+    const render::TerrainSettings terrainSettings = setup.terrain;
 
     // What decides a job's pixels, for --resume: the sources of its scenario (their
     // hashes cover parameters and the files they read), camera or path, settings, time.
@@ -267,7 +255,13 @@ int runRender(const std::vector<std::string>& arguments) {
         renderer = std::move(made.value());
         return {};
     };
-    TileEvaluator evaluator(TileFormat{terrainSettings.clipmapSize, 2});
+    // Tiles come from the concurrent scheduler (one worker per core); every image
+    // waits for all its levels (RenderSettings::waitForTiles), so output does not
+    // depend on thread timing.
+    SchedulerOptions schedulerOptions;
+    schedulerOptions.format = TileFormat{terrainSettings.clipmapSize, 2};
+    schedulerOptions.budgetBytes = cacheMegabytes << 20;
+    Scheduler evaluator(schedulerOptions);
 
     int failures = 0;
     int degraded = 0;
@@ -412,7 +406,7 @@ int runRender(const std::vector<std::string>& arguments) {
             continue;
         }
 
-        const std::size_t tilesBefore = evaluator.statistics().misses;
+        const std::size_t tilesBefore = evaluator.totals().misses;
         // Each scenario renders its own model (overrides applied); unchanged sources
         // keep their content hashes, so their tiles come from the shared cache.
         Result<std::pair<const ProjectModel*, SourceGraph*>> scenario =
@@ -454,47 +448,16 @@ int runRender(const std::vector<std::string>& arguments) {
             reportError(ready.error().message);
             return 1;
         }
-        const ElevationQuery query(*layers.value().elevation, evaluator);
-        double eyeForLevels = 100.0;
-        double fovForLevels = 1.0;
-        if (cameraBlock) {
-            BlockReader camera(*cameraBlock, SchemaRegistry::builtin().find("camera"));
-            eyeForLevels = camera.optionalNumber("eye_height").value_or(100.0);
-            fovForLevels = camera.optionalNumber("fov").value_or(1.0);
-        }
-        const Camera::TerrainHeight terrainHeight = [&](double latitude,
-                                                        double longitude) -> Result<double> {
-            // The ground as the finest ring level under an eye-height camera draws it.
-            const LevelRange levels = LevelVisibility::visibleLevels(
-                eyeForLevels, eyeForLevels, terrainSettings.maxTerrainHeight, fovForLevels,
-                settings.height, terrainSettings.maxLevel);
-            Result<double> height = query.groundHeight(latitude, longitude, levels.finest);
-            if (height && settings.ocean) {
-                return std::max(height.value(), 0.0);
-            }
-            return height;
-        };
-        Result<Camera> camera = cameraBlock
-                                    ? Camera::fromBlock(*cameraBlock, terrainHeight)
-                                    : paths.at(job.path).sample(job.pathTime, terrainHeight);
-        const std::string what =
-            cameraBlock ? cameraBlock->location.toString() + ": camera '" + job.camera + "'"
-                        : pathBlock->location.toString() + ": path '" + job.path + "' frame " +
-                              std::to_string(job.frame);
-        if (!camera) {
-            reportError(camera.error().message);
+        Result<JobView> view = viewForJob(model, job, layers.value(), evaluator, setup, paths);
+        if (!view) {
+            reportError(view.error().message);
             ++failures;
             continue;
         }
-        // The sun of the job's time (NOAA), else the render block's fixed sun.
-        settings.sunDirection = defaultSun;
-        if (job.time) {
-            const SunPosition position = SolarPosition::at(job.unixSeconds);
-            settings.sunDirection =
-                Ellipsoid::surfaceNormal(position.subsolarLatitude, position.subsolarLongitude);
-        }
+        const std::string& what = view.value().what;
+        settings.sunDirection = view.value().sun;
         Result<render::Image> image =
-            renderer->render(layers.value(), evaluator, camera.value(), settings);
+            renderer->render(layers.value(), evaluator, view.value().camera, settings);
         if (!image) {
             reportError(what + ": " + image.error().message);
             ++failures;
@@ -510,7 +473,7 @@ int runRender(const std::vector<std::string>& arguments) {
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const render::RenderStatistics& stats = renderer->statistics();
-        const std::size_t tiles = evaluator.statistics().misses - tilesBefore;
+        const std::size_t tiles = evaluator.totals().misses - tilesBefore;
         if (!stats.terrain.degraded.empty()) {
             // The image is written (coarser data is better than none), but the exit
             // status must say that data was missing.

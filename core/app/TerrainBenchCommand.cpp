@@ -1,5 +1,5 @@
 // `sylva bench terrain [--json] [--size WxH] [--dem N] [--frames N] [--gl B]
-// [--write-frames DIR]`: the spherical clipmap flight benchmark
+// [--write-frames DIR] [--wait-for-tiles] [--cache-mb N]`: the spherical clipmap flight benchmark
 // (render/TerrainBenchmark.h). Prints the metrics as JSON with --json, else one line
 // per metric; --write-frames keeps the flight as a PNG sequence to look at.
 #include <cstdio>
@@ -14,7 +14,7 @@ namespace sylva::app {
 
 int runTerrainBench(const std::vector<std::string>& arguments) {
     const ParsedCommandLine command =
-        parseCommandLine(arguments, {{"json", false}, {"size"}, {"dem"}, {"frames"}, {"gl"}, {"write-frames"}});
+        parseCommandLine(arguments, {{"json", false}, {"size"}, {"dem"}, {"frames"}, {"gl"}, {"write-frames"}, {"wait-for-tiles", false}, {"cache-mb"}});
     if (!command.error.empty() || !command.positional.empty()) {
         reportError(command.error.empty() ? "bench terrain takes no arguments" : command.error);
         return 2;
@@ -38,6 +38,15 @@ int runTerrainBench(const std::vector<std::string>& arguments) {
         options.framesPerSegment = std::max(1, std::atoi(frames->c_str()));
     }
     options.framesFolder = command.get("write-frames").value_or("");
+    options.waitForTiles = command.has("wait-for-tiles");
+    if (std::optional<std::string> cache = command.get("cache-mb")) {
+        const std::optional<std::size_t> megabytes = parseCacheMegabytes(*cache);
+        if (!megabytes) {
+            reportError("--cache-mb expects a tile cache budget in MiB within 16..1048576");
+            return 2;
+        }
+        options.cacheBytes = *megabytes << 20;
+    }
     render::ContextOptions contextOptions;
     if (std::optional<std::string> gl = command.get("gl")) {
         Result<render::GlBackend> backend = render::parseBackend(*gl);

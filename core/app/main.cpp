@@ -4,6 +4,10 @@
 #include <string>
 #include <vector>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 #include "Commands.h"
 
 namespace {
@@ -36,6 +40,14 @@ void printUsage(std::FILE* stream) {
 }  // namespace
 
 int main(int argc, char** argv) {
+#if defined(__GLIBC__)
+    // Tiles (>= 270 KB each) then always come from mmap, so the memory of a tile the
+    // Scheduler's cache evicts returns to the system at once. glibc's adaptive
+    // threshold would otherwise raise itself to the tile size after the first free and
+    // serve tiles from per-thread arenas, which fragment and keep the peak resident
+    // (measured by `sylva bench tiles`: peak 1.56x the cache budget, 1.16x with this).
+    mallopt(M_MMAP_THRESHOLD, 256 * 1024);
+#endif
     if (argc < 2) {
         printUsage(stderr);
         return 2;

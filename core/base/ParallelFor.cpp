@@ -5,6 +5,13 @@
 #include <vector>
 
 namespace sylva {
+namespace {
+thread_local bool parallelForDisabled = false;
+}  // namespace
+
+void disableParallelForOnThisThread() {
+    parallelForDisabled = true;
+}
 
 void parallelFor(int begin, int end, const std::function<void(int)>& body) {
     const int count = end - begin;
@@ -12,7 +19,7 @@ void parallelFor(int begin, int end, const std::function<void(int)>& body) {
         return;
     }
     const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, std::min(count, 16));
-    if (threads == 1) {
+    if (threads == 1 || parallelForDisabled) {
         for (int i = begin; i < end; ++i) {
             body(i);
         }

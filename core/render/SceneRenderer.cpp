@@ -92,7 +92,7 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     levels = terrain_->visibleLevels(camera, aboveTerrain, settings.height);
     statistics_.heightAboveTerrain = aboveTerrain;
 
-    Result<LevelRange> ready = terrain_->update(layers, provider, camera, levels);
+    Result<LevelRange> ready = terrain_->update(layers, provider, camera, levels, std::nullopt, settings.waitForTiles);
     if (!ready) {
         return ready.error();
     }

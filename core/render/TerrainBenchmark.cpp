@@ -16,7 +16,7 @@
 #include "sylva/core/sources/HypsometricSource.h"
 #include "sylva/core/sources/NoiseSource.h"
 #include "sylva/core/sources/NormalMapSource.h"
-#include "sylva/core/tiles/TileEvaluator.h"
+#include "sylva/core/tiles/Scheduler.h"
 #include "sylva/render/Framebuffer.h"
 #include "sylva/render/SceneRenderer.h"
 #include "sylva/render/ShaderProgram.h"
@@ -241,10 +241,13 @@ Result<TerrainBenchmarkResult> runTerrainBenchmark(const ShaderLibrary& library,
     settings.ocean = false;
     settings.sunDirection = Ellipsoid::surfaceNormal(5 * kDegree, -40 * kDegree);
     settings.exposure = 0.45;  // as the demo project
+    settings.waitForTiles = options.waitForTiles;
 
     // The clipmap flight, twice: over the DEM, and over 16x its samples.
     double trianglesMax[2] = {0, 0};
     std::vector<double> frameMs, updateMs, totalMs, terrainMs, uploadBytes;
+    int framesWaiting = 0;  // frames drawn with fewer levels than wanted (tiles still coming)
+    double levelsMissing = 0;
     for (int pass = 0; pass < 2; ++pass) {
         const GridElevationSource elevation("dem", pass == 0 ? grid : upsample(grid, 4), 0.0);
         const NormalMapSource normals("dem.normals", &elevation, 1.0);
@@ -253,7 +256,10 @@ Result<TerrainBenchmarkResult> runTerrainBenchmark(const ShaderLibrary& library,
         colours.shallowWater = {0.0100f, 0.0844f, 0.1470f};
         colours.rock = {0.1470f, 0.1274f, 0.1000f};
         const HypsometricSource colour("dem.colour", &elevation, &normals, colours);
-        TileEvaluator evaluator(TileFormat{256, 2}, 256u << 20);
+        SchedulerOptions schedulerOptions;
+        schedulerOptions.format = TileFormat{256, 2};
+        schedulerOptions.budgetBytes = options.cacheBytes;
+        Scheduler evaluator(schedulerOptions);
         const TerrainLayers layers{&elevation, &colour, &normals};
         for (const FlightFrame& frame : frames) {
             const auto start = Clock::now();
@@ -275,13 +281,17 @@ Result<TerrainBenchmarkResult> runTerrainBenchmark(const ShaderLibrary& library,
             }
             if (pass == 0) {
                 // The frame proper (draw, shade, read back) and, separately, the CPU
-                // clipmap update with synchronous tile generation: in the design the
-                // scheduler produces tiles off the render thread (seed 001 §4.6).
+                // clipmap update: with waitForTiles it includes waiting for the
+                // workers; without, only copying ready tiles (seed 001 §4.6-4.7).
                 frameMs.push_back(statistics.gpuSeconds * 1000.0);
                 updateMs.push_back(statistics.terrain.updateSeconds * 1000.0);
                 totalMs.push_back(ms);
                 terrainMs.push_back(statistics.terrainPassSeconds * 1000.0);
                 uploadBytes.push_back(double(statistics.terrain.uploadedBytes));
+                if (statistics.terrain.waitingLevel >= 0) {
+                    ++framesWaiting;
+                    levelsMissing += statistics.terrain.wanted.finest - statistics.terrain.levels.finest;
+                }
                 result.levelsPerAltitude.push_back(
                     {frame.altitude, {statistics.terrain.levels.coarsest, statistics.terrain.levels.finest}});
             }
@@ -340,6 +350,9 @@ Result<TerrainBenchmarkResult> runTerrainBenchmark(const ShaderLibrary& library,
     result.metrics["speedup_vs_bruteforce"] = median(bruteMs) / std::max(median(terrainMs), 1e-9);
     result.metrics["triangles_growth"] = trianglesMax[1] / std::max(trianglesMax[0], 1.0);
     result.metrics["frames"] = double(frames.size());
+    result.metrics["frames_waiting_for_tiles"] = framesWaiting;
+    result.metrics["levels_missing_per_waiting_frame"] = framesWaiting ? levelsMissing / framesWaiting : 0.0;
+    result.metrics["wait_for_tiles"] = options.waitForTiles ? 1 : 0;
     result.metrics["width"] = options.width;
     result.metrics["height"] = options.height;
     result.metrics["dem_samples"] = options.demSamples;

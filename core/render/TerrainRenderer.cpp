@@ -3,6 +3,7 @@
 #include <glad/gl.h>
 
 #include <chrono>
+#include <map>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -101,7 +102,8 @@ LevelRange TerrainRenderer::visibleLevels(const Camera& camera, double heightAbo
 
 Result<LevelRange> TerrainRenderer::update(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
                                            const LevelRange& wanted,
-                                           std::optional<std::chrono::steady_clock::time_point> deadline) {
+                                           std::optional<std::chrono::steady_clock::time_point> deadline,
+                                           bool waitForAll) {
     SYLVA_CHECK(layers.elevation != nullptr && layers.normals != nullptr);
     const auto start = std::chrono::steady_clock::now();
     const double latitude = camera.geodetic.latitude;
@@ -130,12 +132,17 @@ Result<LevelRange> TerrainRenderer::update(const TerrainLayers& layers, TileProv
     const Layer layerList[] = {{height_.get(), &heightTexture_, layers.elevation, kHeightLevelOffset},
                                {normals_.get(), &normalTexture_, layers.normals, kDetailLevelOffset},
                                {color_.get(), &colorTexture_, layers.color, kDetailLevelOffset}};
-    statistics_.wanted = wanted;
-    statistics_.degraded.clear();
-    LevelRange drawn = wanted;
-    // Coarse to fine: the coarser neighbour of the coarsest ring is needed for blending.
-    for (int level = std::max(0, wanted.coarsest - 1); level <= wanted.finest; ++level) {
-        Status status;
+    const int firstLevel = std::max(0, wanted.coarsest - 1);  // the coarser neighbour blends
+
+    // Seed 001 Algorithm 3: gather the tiles of every level (coarse before fine by
+    // priority), hand the list over (queued tasks of the previous focus are cancelled,
+    // running ones finish and stay cached), then bring levels up coarse to fine.
+    struct LevelTiles {
+        std::vector<std::pair<const Layer*, ClipmapWindow>> windows;
+    };
+    std::vector<LevelTiles> levelTiles(std::size_t(wanted.finest - firstLevel + 1));
+    std::vector<TileRequest> requests;
+    for (int level = firstLevel; level <= wanted.finest; ++level) {
         for (const Layer& layer : layerList) {
             if (layer.source == nullptr) {
                 continue;
@@ -144,11 +151,64 @@ Result<LevelRange> TerrainRenderer::update(const TerrainLayers& layers, TileProv
             if (layer.clipmap->valid(level) && layer.clipmap->window(level) == window) {
                 continue;
             }
-            const Clipmap::Fetch fetch = [&](const TileKey& key) { return provider.tile(*layer.source, key); };
-            status = layer.clipmap->update(level, window, fetch);
-            layer.texture->upload(*layer.clipmap, layer.clipmap->takeDirtyRegions());
-            if (!status) {
+            levelTiles[std::size_t(level - firstLevel)].windows.emplace_back(&layer, window);
+            for (const TileKey& key : Clipmap::tilesFor(window, size)) {
+                requests.push_back({layer.source, key, level});
+            }
+        }
+    }
+    provider.setFocus(latitude, longitude);
+    provider.setWanted(requests);
+
+    statistics_.wanted = wanted;
+    statistics_.degraded.clear();
+    statistics_.waitingLevel = -1;
+    LevelRange drawn = wanted;
+    // Tiles already obtained in this call, so a level waited for keeps them even if the
+    // cache prunes meanwhile.
+    std::map<std::pair<std::uint64_t, TileKey>, TilePointer> ready;
+    for (int level = firstLevel; level <= wanted.finest; ++level) {
+        const LevelTiles& needed = levelTiles[std::size_t(level - firstLevel)];
+        // Every tile of the level's windows: ready, pending (not yet produced) or failed.
+        Status status;
+        bool pending = false;
+        while (true) {
+            pending = false;
+            for (const auto& [layer, window] : needed.windows) {
+                for (const TileKey& key : Clipmap::tilesFor(window, size)) {
+                    const auto id = std::make_pair(layer->source->contentHash(), key);
+                    if (ready.count(id) != 0) {
+                        continue;
+                    }
+                    TileLookup lookup = provider.tryGet(*layer->source, key, level);
+                    if (lookup.state == TileLookup::State::Ready) {
+                        ready.emplace(id, std::move(lookup.tile));
+                    } else if (lookup.state == TileLookup::State::Failed) {
+                        status = lookup.error;
+                    } else {
+                        pending = true;
+                    }
+                }
+            }
+            // The coarsest levels are always waited for (nothing else covers the
+            // globe); batch rendering waits for every level.
+            if (!status || !pending || (!waitForAll && level > wanted.coarsest)) {
                 break;
+            }
+            provider.waitForProgress(std::chrono::milliseconds(20));
+        }
+        if (status && !pending) {
+            for (const auto& [layer, window] : needed.windows) {
+                const Clipmap::Fetch fetch = [&](const TileKey& key) -> Result<TilePointer> {
+                    auto it = ready.find({layer->source->contentHash(), key});
+                    SYLVA_CHECK_MESSAGE(it != ready.end(), "clipmap update outside Clipmap::tilesFor");
+                    return it->second;
+                };
+                status = layer->clipmap->update(level, window, fetch);
+                layer->texture->upload(*layer->clipmap, layer->clipmap->takeDirtyRegions());
+                if (!status) {
+                    break;
+                }
             }
         }
         if (!status) {
@@ -158,6 +218,12 @@ Result<LevelRange> TerrainRenderer::update(const TerrainLayers& layers, TileProv
             drawn.finest = level - 1;
             statistics_.degraded = "level " + std::to_string(level) + " failed, drawing up to level " +
                                    std::to_string(drawn.finest) + ": " + status.error().message;
+            break;
+        }
+        if (pending) {
+            // Not an error: the workers are still producing; a later frame draws it.
+            drawn.finest = level - 1;
+            statistics_.waitingLevel = level;
             break;
         }
         if (deadline && level >= wanted.coarsest && level < wanted.finest &&

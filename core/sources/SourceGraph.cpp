@@ -1,5 +1,6 @@
 #include "sylva/core/sources/SourceGraph.h"
 
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <set>
@@ -161,6 +162,48 @@ Result<TerrainLayers> SourceGraph::terrainLayers(const ProjectModel& model, std:
         }
     }
     return layers;
+}
+
+namespace {
+
+void collect(const Source& source, std::unordered_set<const Source*>& seen) {
+    if (seen.insert(&source).second) {
+        for (const Source* input : source.inputs()) {
+            if (input != nullptr) {
+                collect(*input, seen);
+            }
+        }
+    }
+}
+
+}  // namespace
+
+std::unordered_set<std::uint64_t> SourceGraph::contentHashes() const {
+    std::unordered_set<const Source*> all;
+    for (const auto& source : sources_) {
+        collect(*source, all);
+    }
+    std::unordered_set<std::uint64_t> hashes;
+    for (const Source* source : all) {
+        hashes.insert(source->contentHash());
+    }
+    return hashes;
+}
+
+std::vector<std::filesystem::path> SourceGraph::files() const {
+    std::unordered_set<const Source*> all;
+    for (const auto& source : sources_) {
+        collect(*source, all);
+    }
+    std::vector<std::filesystem::path> result;
+    for (const Source* source : all) {
+        for (const std::filesystem::path& file : source->files()) {
+            result.push_back(file);
+        }
+    }
+    std::sort(result.begin(), result.end());
+    result.erase(std::unique(result.begin(), result.end()), result.end());
+    return result;
 }
 
 }  // namespace sylva

@@ -65,6 +65,31 @@ ClipmapWindow Clipmap::windowFor(int level, double latitude, double longitude, i
     return window;
 }
 
+std::vector<TileKey> Clipmap::tilesFor(const ClipmapWindow& window, int size) {
+    // The same tile arithmetic as copyRect over the full window.
+    const std::int64_t n = size;
+    const std::int64_t columns = TileKey::columns(window.level, window.lonReduction);
+    const std::int64_t totalRows = window.totalRows(size);
+    const std::int64_t rowFirst =
+        floorDiv(std::clamp<std::int64_t>(window.originY, 0, totalRows - 1), n);
+    const std::int64_t rowLast =
+        floorDiv(std::clamp<std::int64_t>(window.originY + n - 1, 0, totalRows - 1), n);
+    const std::int64_t columnFirst = floorDiv(window.originX, n);
+    std::vector<TileKey> keys;
+    for (std::int64_t row = rowFirst; row <= rowLast; ++row) {
+        for (std::int64_t column = columnFirst; column <= floorDiv(window.originX + n - 1, n);
+             ++column) {
+            const TileKey key{window.level, window.lonReduction,
+                              static_cast<std::int32_t>(floorMod(column, columns)),
+                              static_cast<std::int32_t>(row)};
+            if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
+                keys.push_back(key);
+            }
+        }
+    }
+    return keys;
+}
+
 const ClipmapWindow& Clipmap::window(int level) const {
     SYLVA_CHECK(valid(level));
     return *levels_.at(level).window;

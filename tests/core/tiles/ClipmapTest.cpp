@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -64,6 +65,34 @@ TEST(Clipmap, RandomFocusMovesEqualAFullRebuild) {
         ASSERT_TRUE(rebuilt.update(level, window, fetch));
         EXPECT_EQ(incremental.window(level), window);
         EXPECT_EQ(incremental.data(level), rebuilt.data(level)) << "level " << level;
+    }
+}
+
+TEST(Clipmap, TilesForCoverEveryFetchOfAnUpdate) {
+    // The renderer requests tilesFor(window) ahead and updates only from those; any
+    // fetch outside them would stall or fail. Random moves, poles and antimeridian.
+    constexpr int kSize = 16;
+    constexpr int kLevels = 10;
+    CoordinateTiles tiles(kSize);
+    Clipmap clipmap(kLevels, kSize, 2);
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    double latitude = 0.0, longitude = 3.13;
+    for (int move = 0; move < 300; ++move) {
+        latitude = std::clamp(latitude + uniform(random) * 0.2, -kPi / 2 + 1e-6, kPi / 2 - 1e-6);
+        longitude = std::remainder(longitude + uniform(random) * 0.3, 2 * kPi);
+        for (int level = 0; level < kLevels; ++level) {
+            const ClipmapWindow window = Clipmap::windowFor(level, latitude, longitude, kSize);
+            const std::vector<TileKey> allowed = Clipmap::tilesFor(window, kSize);
+            EXPECT_LE(allowed.size(), 4u);
+            const auto fetch = [&](const TileKey& key) {
+                EXPECT_NE(std::find(allowed.begin(), allowed.end(), key), allowed.end())
+                    << key.toString();
+                return tiles(key);
+            };
+            ASSERT_TRUE(clipmap.update(level, window, fetch));
+        }
+        clipmap.takeDirtyRegions();
     }
 }
 

@@ -10,4 +10,9 @@ namespace sylva {
 
 void parallelFor(int begin, int end, const std::function<void(int)>& body);
 
+// Makes parallelFor run serially on the calling thread from now on. The tile
+// Scheduler's workers call it: they already occupy every core with whole tiles, and
+// nested threads would only oversubscribe the machine.
+void disableParallelForOnThisThread();
+
 }  // namespace sylva

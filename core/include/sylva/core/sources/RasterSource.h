@@ -75,6 +75,7 @@ public:
     ~RasterSource() override;
 
     Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override;
+    std::vector<std::filesystem::path> files() const override { return {parameters_.file}; }
 
     // Elevation rasters: the Mask source of their coverage (owned by this source);
     // nullptr for images (their alpha is the coverage) and for coverage sources.

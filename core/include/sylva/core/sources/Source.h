@@ -2,13 +2,15 @@
 // inputs, parameters and a content hash, and produces image tiles of the
 // longitude/latitude pyramid as a pure function of (TileKey, input tiles).
 //
-// Sources never cache: a TileProvider (the TileEvaluator, later the Scheduler)
+// Sources never cache: a TileProvider (the TileEvaluator or the Scheduler)
 // owns the caches and hands input tiles to produce(). Errors in data (an unreadable
 // file, a failed input) come back as Result errors that name the source; they never
 // abort the process.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,13 +31,41 @@ struct TileFormat {
     int border = 2;
 };
 
+// One wanted tile: the source, the key and a priority (smaller runs first).
+struct TileRequest {
+    const Source* source = nullptr;
+    TileKey key;
+    int priority = 0;
+};
+
+// The answer of TileProvider::tryGet(): a ready tile, "pending" (queued or being
+// produced), or the remembered error of a failed tile.
+struct TileLookup {
+    enum class State { Ready, Pending, Failed };
+    State state = State::Pending;
+    TilePointer tile;  // Ready only
+    Error error;       // Failed only
+};
+
 // Gives a source the tiles of its inputs. Implementations cache and may compute
 // in parallel; produce() only calls tile() for its own inputs.
+//
+// Renderers use the non-blocking part: tryGet(), setWanted() (the tiles the current
+// frame needs; queued work for others is cancelled), setFocus() (the pruning centre)
+// and waitForProgress(). A synchronous provider (TileEvaluator) answers tryGet() by
+// producing the tile at once and ignores the rest, so the same renderer code works
+// with both.
 class TileProvider {
 public:
     virtual ~TileProvider() = default;
     virtual Result<TilePointer> tile(const Source& source, const TileKey& key) = 0;
     virtual const TileFormat& format() const = 0;
+
+    virtual TileLookup tryGet(const Source& source, const TileKey& key, int priority);
+    virtual void setWanted(const std::vector<TileRequest>& wanted) { (void)wanted; }
+    virtual void setFocus(double latitude, double longitude) { (void)latitude, (void)longitude; }
+    // Blocks until a tile finished or `timeout` passed (returns at once if nothing runs).
+    virtual void waitForProgress(std::chrono::milliseconds timeout) { (void)timeout; }
 };
 
 class Source {
@@ -57,6 +87,10 @@ public:
 
     // Produces the tile for `key` (interior and border). Called by TileProviders only.
     virtual Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const = 0;
+
+    // The files this source itself reads (not its inputs'), for FileWatch: when one
+    // changes on disk the owner rebuilds the graph (the source's hash then changes).
+    virtual std::vector<std::filesystem::path> files() const { return {}; }
 
 protected:
     // Subclasses call these from their constructor: inputs in a fixed order, then

@@ -7,9 +7,11 @@
 // normally reports these first, the graph re-checks so hand-built models are safe.
 #pragma once
 
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <string_view>
+#include <unordered_set>
 #include <vector>
 
 #include "sylva/core/base/Result.h"
@@ -35,6 +37,11 @@ public:
 
     const Source* find(std::string_view name) const;
     std::size_t size() const { return sources_.size(); }
+
+    // The content hashes of every source of the graph and their inputs (for
+    // Scheduler::retainOnly after a reload) and every file they read (for FileWatch).
+    std::unordered_set<std::uint64_t> contentHashes() const;
+    std::vector<std::filesystem::path> files() const;
 
     // The layers of a scenario (its `layers` list, one source per port type), or of
     // the first scenario when `scenario` is empty. Adds a derived normal_map source

@@ -56,7 +56,12 @@ public:
 
     // The window that clipmap level `level` needs for a focus at (latitude,
     // longitude) in radians. Deterministic; equal inputs give equal windows.
-    static ClipmapWindow windowFor(int level, double latitude, double longitude, int size, int levelOffset = 2);
+    static ClipmapWindow windowFor(int level, double latitude, double longitude, int size,
+                                   int levelOffset = 2);
+    // The tiles a full update of `window` reads (at most a 2 x 2 quad, fewer where rows
+    // beyond a pole repeat the pole row): a superset of what any update to it fetches,
+    // so a renderer can request them ahead (seed 001 §4.5.1, the quad).
+    static std::vector<TileKey> tilesFor(const ClipmapWindow& window, int size);
     // Ring radius of level i in radians of view angle: 2^-i pi.
     static double ringRadius(int level);
 

@@ -29,6 +29,10 @@ struct RenderSettings {
     bool atmosphere = true;
     bool ocean = true;
     double exposure = 1.0;
+    // Batch rendering waits until every wanted terrain level's tiles are ready (the
+    // image is then independent of thread timing); interactive use draws what is
+    // ready and lets the provider's workers catch up (seed 001 §4.7).
+    bool waitForTiles = true;
 };
 
 struct Image {

@@ -5,6 +5,7 @@
 // Needs a current GL 4.5 context.
 #pragma once
 
+#include <cstddef>
 #include <map>
 #include <string>
 #include <vector>
@@ -22,6 +23,11 @@ struct TerrainBenchmarkOptions {
     int framesPerSegment = 6;     // frames between successive altitudes of the flight
     int bruteForceFrames = 5;     // brute-force frames sampled along the flight
     std::string framesFolder;     // if set, each clipmap frame is written there as flight_NNN.png
+    // Frames wait until every level's tiles are ready (as batch rendering does); the
+    // default draws the levels that are ready while the Scheduler's workers produce
+    // the rest (seed 001 §4.7), as an interactive viewer would.
+    bool waitForTiles = false;
+    std::size_t cacheBytes = 256u << 20;  // the Scheduler's tile cache budget
 };
 
 struct TerrainBenchmarkResult {

@@ -43,7 +43,8 @@ struct TerrainSettings {
 struct TerrainFrameStatistics {
     LevelRange levels;           // levels drawn
     LevelRange wanted;           // levels the view asked for
-    std::string degraded;        // why fewer levels were drawn than wanted; empty if none
+    std::string degraded;        // why fewer levels were drawn than wanted (an error); empty if none
+    int waitingLevel = -1;       // the first level not drawn because its tiles are still being produced
     std::uint64_t triangles = 0;
     std::uint64_t uploadedBytes = 0;
     double updateSeconds = 0;  // CPU clipmap update including tile evaluation
@@ -59,15 +60,21 @@ public:
     LevelRange visibleLevels(const Camera& camera, double heightAboveTerrain, int pixels) const;
 
     // Brings the clipmap levels of `wanted` (and the one coarser, for blending) to
-    // the camera's nadir, coarse to fine, as in seed 001 Algorithm 3 (§4.7): a level
-    // is drawn as a ring only when all its layers are ready; when a finer level fails
-    // (a tile error) or the deadline passes, drawing stops at the last ready level,
-    // whose fill disk then covers the nadir, so a missing level never leaves a hole.
-    // Returns the levels to draw (statistics().degraded says why fewer), or the error
-    // when not even the coarsest level could be made.
+    // the camera's nadir, coarse to fine, as in seed 001 Algorithm 3 (§4.7): the tiles
+    // of all levels are handed to the provider as the wanted list (priority = level,
+    // so coarse first; stale queued tasks are cancelled), then each level is updated
+    // from ready tiles only. A level is drawn as a ring only when all its layers are
+    // ready; when a finer level's tiles are still pending (statistics().waitingLevel),
+    // fail (a tile error) or the deadline passes, drawing stops at the last ready
+    // level, whose fill disk then covers the nadir, so a missing level never leaves a
+    // hole. The coarsest wanted level (and its blend neighbour) is always waited for.
+    // `waitForAll` (batch rendering) waits for every level, so the image does not
+    // depend on thread timing. Returns the levels to draw (statistics().degraded says
+    // why fewer on error), or the error when not even the coarsest level could be made.
     Result<LevelRange> update(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
                               const LevelRange& wanted,
-                              std::optional<std::chrono::steady_clock::time_point> deadline = std::nullopt);
+                              std::optional<std::chrono::steady_clock::time_point> deadline = std::nullopt,
+                              bool waitForAll = true);
 
     // Draws into the bound G-buffer (attachment 0: albedo, 1: normal; depth cleared
     // to 0 beforehand). `projection` is reversed-Z.

@@ -1,0 +1,199 @@
+// Scheduler: the concurrent TileProvider of seed 001 §4.6-4.7. The render thread
+// posts tile requests (with a priority) to a manager thread, the manager keeps them in
+// a priority queue, drops the ones no longer wanted and hands the most urgent one to
+// each idle worker; workers produce tiles through the source graph and put them into
+// one cache per source content hash. All caches share one memory budget and are
+// pruned by distance to the focus (Fig. 4.3a).
+//
+// Threads and OS priority: the manager runs one nice step below the creating thread,
+// workers `workerNiceIncrement` steps below it (Linux: setpriority(PRIO_PROCESS, tid)
+// on each thread's own id, which only lowers priority and needs no privilege), so the
+// render thread keeps the CPU it needs while workers fill the caches.
+//
+// Dependencies: a worker (or any thread) calling tile() for an input finds it cached,
+// waits if another thread is producing it, or takes the task over and produces it
+// depth-first itself. The source graph is acyclic, so waits form no cycle and nothing
+// deadlocks; a (source hash, key) is produced by at most one thread at a time, and a
+// tile that is cached is never produced again (unless evicted or invalidated).
+//
+// Failures: a failed tile is reported once through the failure sink, counted, and
+// remembered; later requests return the same error without retrying.
+//
+// Synchronisation: one mutex guards caches, queue and task table; it is held only for
+// map operations, never while a source produces (tiles are immutable once shared).
+// The seed uses one mutex per cache; with a handful of workers and millisecond tiles
+// the single lock is uncontended and makes the global budget exact.
+//
+// Lifetime: every Source handed to the scheduler must outlive the tasks that refer to
+// it. Before destroying a source graph call retainOnly() with the hashes still alive
+// (or cancelAll()); both return only after running tasks of dropped sources finished.
+#pragma once
+
+#include <condition_variable>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <string>
+#include <thread>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "sylva/core/sources/Source.h"
+
+namespace sylva {
+
+struct SchedulerOptions {
+    TileFormat format;
+    int workers = 0;                        // 0: std::thread::hardware_concurrency()
+    std::size_t budgetBytes = 1024u << 20;  // all cached tiles together
+    int workerNiceIncrement = 5;            // 0 keeps workers at the caller's priority
+    // Called once per failed tile (from a worker or the requesting thread, never under
+    // the scheduler's lock).
+    std::function<void(const Error&)> failureSink;
+};
+
+// Per source content hash, or the total over all sources.
+struct SchedulerStatistics {
+    std::string name;           // the first source seen with this hash (empty for totals)
+    std::size_t hits = 0;       // requests answered from the cache
+    std::size_t misses = 0;     // tiles produced
+    std::size_t bytes = 0;      // bytes cached now
+    std::size_t tiles = 0;      // tiles cached now
+    std::size_t evictions = 0;  // tiles pruned for the budget
+    std::size_t failures = 0;   // distinct failed tiles
+    double produceSeconds = 0;  // produce() time excluding nested inputs and waits
+};
+
+class Scheduler final : public TileProvider {
+public:
+    explicit Scheduler(SchedulerOptions options = {});
+    ~Scheduler() override;  // queued tasks are dropped, running ones finish
+    Scheduler(const Scheduler&) = delete;
+    Scheduler& operator=(const Scheduler&) = delete;
+
+    // Priority for `level` (coarse first) of visible or prefetched tiles (visible first).
+    static int priority(int level, bool visible) { return (visible ? 0 : 1000) + level; }
+
+    // Blocking: the tile from the cache, from the thread producing it, or produced on
+    // the calling thread now (depth-first through its inputs).
+    Result<TilePointer> tile(const Source& source, const TileKey& key) override;
+    const TileFormat& format() const override { return options_.format; }
+
+    // Non-blocking: the ready tile, the remembered error, or Pending after queuing a
+    // request with `priority` (an existing request takes the smaller priority).
+    TileLookup tryGet(const Source& source, const TileKey& key, int priority) override;
+    void request(const Source& source, const TileKey& key, int priority);
+    // Drops the queued task for this tile; a running one finishes and is cached.
+    void cancel(const Source& source, const TileKey& key);
+    // The tiles wanted now: queues the missing ones and cancels every queued task not
+    // in the list (seed 001 Algorithm 3, "cancel previous tile tasks; enqueue taskList").
+    void setWanted(const std::vector<TileRequest>& wanted) override;
+    void cancelAll();
+
+    // Pruning centre (radians): tiles far from it in their own level's grid go first.
+    void setFocus(double latitude, double longitude) override;
+    // Ring distance of `key` from the focus in tiles of the key's grid: 0 for the tile
+    // under the focus and the quad around it, 1 for the ring adjacent to that quad...
+    static int focusDistance(const TileKey& key, double latitude, double longitude);
+
+    // Forgets tiles, failures and queued tasks of `contentHash` and of every hash that
+    // (transitively) has it as an input; returns the hashes dropped.
+    std::vector<std::uint64_t> invalidate(std::uint64_t contentHash);
+    // Forgets everything of hashes not in `live` (after a project reload: changed nodes
+    // and their dependents have new hashes, unchanged branches keep theirs and their
+    // tiles). Waits for running tasks of dropped hashes, so their sources may go.
+    void retainOnly(const std::unordered_set<std::uint64_t>& live);
+
+    // Blocks until no task is queued or running.
+    void waitIdle();
+    // Blocks until something finished (a tile cached or failed) or `timeout` passed.
+    void waitForProgress(std::chrono::milliseconds timeout) override;
+
+    SchedulerStatistics totals() const;
+    std::vector<SchedulerStatistics> statisticsPerSource() const;
+    std::size_t budgetBytes() const { return options_.budgetBytes; }
+    void setBudgetBytes(std::size_t bytes);
+    std::size_t peakCachedBytes() const;
+    std::size_t queuedTasks() const;
+    int workerCount() const { return static_cast<int>(workers_.size()); }
+
+private:
+    struct TaskId {
+        std::uint64_t hash = 0;
+        TileKey key;
+        friend bool operator==(const TaskId&, const TaskId&) = default;
+        friend auto operator<=>(const TaskId&, const TaskId&) = default;
+    };
+    struct TaskIdHash {
+        std::size_t operator()(const TaskId& id) const {
+            return TileKeyHash{}(id.key) ^
+                   static_cast<std::size_t>(id.hash * 0x9E3779B97F4A7C15ull);
+        }
+    };
+    enum class TaskState { Queued, Dispatched, Running };
+    struct Task {
+        const Source* source = nullptr;
+        int priority = 0;
+        std::uint64_t sequence = 0;
+        TaskState state = TaskState::Queued;
+        std::uint64_t generation = 0;  // of the hash when the task started running
+    };
+    struct CachedTile {
+        TilePointer tile;
+        std::uint64_t lastUse = 0;
+    };
+    // One cache per source content hash (seed 001 §4.4.3).
+    struct SourceCache {
+        std::unordered_map<TileKey, CachedTile, TileKeyHash> tiles;
+        std::map<TileKey, Error> failures;
+        SchedulerStatistics statistics;
+        std::vector<std::uint64_t> inputs;  // content hashes of the source's inputs
+        std::uint64_t generation = 0;       // bumped by invalidation
+    };
+    struct Message {
+        enum class Kind { Request, Cancel, SetWanted, CancelAll } kind;
+        std::vector<TileRequest> requests;  // Request (one), SetWanted (all)
+    };
+
+    void managerLoop();
+    void workerLoop();
+    // Runs a task whose state the caller set to Running; the lock is released while the
+    // source produces. Returns the tile or the error.
+    Result<TilePointer> run(std::unique_lock<std::mutex>& lock, const TaskId& id,
+                            const Source& source);
+    SourceCache& cacheFor(const Source& source);  // registers the source's hash and inputs
+    void queueLocked(const Source& source, const TileKey& key, int priority);
+    void removeQueuedLocked(const TaskId& id);
+    void insertLocked(const TaskId& id, TilePointer tile);
+    void pruneLocked();
+    void dropHashLocked(std::uint64_t hash);
+    void postLocked(Message message);
+
+    SchedulerOptions options_;
+    mutable std::mutex mutex_;
+    std::condition_variable managerWake_;  // messages arrived, a worker became idle, stop
+    std::condition_variable workerWake_;   // a task was dispatched, stop
+    std::condition_variable progress_;     // a task finished
+    std::deque<Message> inbox_;            // render thread → manager
+    std::deque<TaskId> dispatched_;        // manager → workers
+    std::set<std::tuple<int, std::uint64_t, TaskId>> queue_;  // (priority, sequence, id)
+    std::unordered_map<TaskId, Task, TaskIdHash> tasks_;
+    std::unordered_map<std::uint64_t, SourceCache> caches_;
+    std::uint64_t sequence_ = 0;
+    std::uint64_t useClock_ = 0;
+    std::size_t cachedBytes_ = 0;
+    std::size_t peakBytes_ = 0;
+    std::optional<std::pair<double, double>> focus_;  // latitude, longitude
+    int idleWorkers_ = 0;
+    bool stopping_ = false;
+    std::thread manager_;
+    std::vector<std::thread> workers_;
+};
+
+}  // namespace sylva
