@@ -19,6 +19,8 @@ void printUsage(std::FILE* stream) {
         "commands:\n"
         "  render PROJECT [--views NAME] [--out DIR] [--size WxH] [--gl egl|osmesa|glfw] [-D name=value]\n"
         "                 render the project's views to images\n"
+        "  watch PROJECT [--views NAME] [--camera NAME] [--out DIR] [--size WxH] [--exit-after N]\n"
+        "                 re-render on every change of the project or its data (headless)\n"
         "  check PROJECT [-D name=value] [--set block.attr=value] [--print-params] [--lenient]\n"
         "                [--diagnostics=text|json]\n"
         "                 report every problem in a project without rendering\n"
@@ -56,6 +58,9 @@ int main(int argc, char** argv) {
     const std::vector<std::string> arguments(argv + 2, argv + argc);
     if (command == "render") {
         return sylva::app::runRender(arguments);
+    }
+    if (command == "watch") {
+        return sylva::app::runWatch(arguments);
     }
     if (command == "check") {
         return sylva::app::runCheck(arguments);

@@ -291,6 +291,33 @@ expect_stderr "zoneless.sylva:5:14: views 'photos': time 2024-06-21T09:00:00 has
 [ ! -e "$SCRATCH/zoneless" ] || fail "output folder created although nothing may be rendered"
 end
 
+# --- watch ----------------------------------------------------------------------
+
+begin "watch: an edit recomputes only the changed node's tiles; errors keep the image"
+mkdir -p "$SCRATCH/watch"
+cp "$PROJECTS/watch.sylva" "$SCRATCH/watch/watch.sylva"
+WLOG=$SCRATCH/watch/log.txt
+("$SYLVA" watch "$SCRATCH/watch/watch.sylva" --gl egl --out "$SCRATCH/watch/out" --exit-after 3 --interval-ms 100 \
+    >"$WLOG" 2>&1; echo "rc=$?" >>"$WLOG") &
+wait_for() { for _ in $(seq 1 1200); do grep -q "$1" "$WLOG" 2>/dev/null && return 0; sleep 0.1; done; return 1; }
+wait_for "watching" || fail "watch did not start"
+first=$(grep -m1 -o '[0-9]* tiles recomputed' "$WLOG" | cut -d' ' -f1)
+sed -i 's/saturation = 1.0/saturation = 1.5/' "$SCRATCH/watch/watch.sylva"
+for _ in $(seq 1 1200); do [ "$(grep -c latency "$WLOG")" -ge 2 ] && break; sleep 0.1; done
+second=$(grep -o '[0-9]* tiles recomputed' "$WLOG" | sed -n 2p | cut -d' ' -f1)
+sed -i 's/saturation = 1.5/saturation = oops/' "$SCRATCH/watch/watch.sylva"
+wait_for "keeping the last images" || fail "an error did not keep the last image"
+[ -s "$SCRATCH/watch/out/east.png" ] || fail "the last image is gone"
+sed -i 's/saturation = oops/saturation = 0.5/' "$SCRATCH/watch/watch.sylva"
+wait_for "rc=" || fail "watch did not finish after three renders"
+cp "$WLOG" "$OUT"
+: >"$ERR"
+expect_stdout "rc=0"
+expect_stdout "expected number, found word"
+[ -n "$first" ] && [ -n "$second" ] && [ "$second" -gt 0 ] && [ $((second * 3)) -lt "$first" ] ||
+    fail "edit recomputed $second tiles of $first: expected only the adjust node's"
+end
+
 # --- check ----------------------------------------------------------------------
 
 begin "check demo project -> exit 0"
