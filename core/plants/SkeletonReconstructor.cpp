@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <numeric>
+#include <queue>
 #include <unordered_map>
 
 namespace sylva {
@@ -173,61 +174,62 @@ Piece fitPiece(const std::vector<Vector>& points, const Vector& preferred) {
     return best;
 }
 
-// Splits a component into equal pieces along its principal axis until each is straight.
-std::vector<Piece> fitComponent(const std::vector<Vector>& points) {
-    const Vector centroid = centroidOf(points);
-    std::array<double, 3> values{};
-    std::array<Vector, 3> vectors{};
-    covarianceEigen(points, centroid, values, vectors);
-    std::size_t largest = 0;
-    for (std::size_t i = 1; i < 3; ++i) {
-        if (values[i] > values[largest]) {
-            largest = i;
-        }
+// Fits a cone to `points`; when they are not straight enough (radial spread above
+// 12 % of the radius, or a bend off the axis) splits them at the median of `along` (their geodesic
+// distance from one end of the stem, see reconstruct) and recurses, so curved stems become chains
+// of short straight pieces. Splitting by geodesic distance rather than by projection keeps the arms
+// of a U-shaped stem apart. Median splits keep both halves populated; depth 6 bounds a stem at 64
+// pieces. Pieces come out ordered by `along`, each oriented from its low to its high end.
+void splitPiece(const std::vector<Vector>& points, const std::vector<double>& along, int depth,
+                std::vector<Piece>& out) {
+    std::vector<std::size_t> order(points.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return along[a] < along[b]; });
+    const std::size_t half = order.size() / 2;
+    Vector low(0.0);
+    Vector high(0.0);
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        (i < half ? low : high) += points[order[i]];
     }
-    const Vector axis = vectors[largest];
-    std::vector<double> along(points.size());
-    double minimum = std::numeric_limits<double>::max();
-    double maximum = std::numeric_limits<double>::lowest();
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        along[i] = glm::dot(points[i] - centroid, axis);
-        minimum = std::min(minimum, along[i]);
-        maximum = std::max(maximum, along[i]);
+    Vector preferred =
+        high / double(order.size() - half) - low / double(std::max<std::size_t>(half, 1));
+    preferred = glm::length(preferred) > 0.0 ? glm::normalize(preferred) : Vector(0.0, 0.0, 1.0);
+    const Piece piece = fitPiece(points, preferred);
+    const double radius = 0.5 * (piece.startRadius + piece.endRadius);
+    // Bend: the middle third's centroid (in stem order) off the fitted axis, which the
+    // radial spread alone misses on thick tubes (a fitted radius absorbs the bend).
+    Vector middle(0.0);
+    const std::size_t third = order.size() / 3;
+    for (std::size_t i = third; i < order.size() - third; ++i) {
+        middle += points[order[i]];
     }
-    const double length = std::max(maximum - minimum, 1e-9);
-    constexpr int kMaximumPieces = 12;
+    middle /= double(order.size() - 2 * third);
+    const Vector axis = piece.end - piece.start;
+    const double axisLength = glm::length(axis);
+    const double bend =
+        axisLength > 0.0 ? glm::length(glm::cross(middle - piece.start, axis)) / axisLength : 0.0;
+    const bool straight =
+        piece.spread <= 0.12 * radius + 1e-4 && bend <= 0.1 * radius + 0.005 * axisLength;
+    if (straight || points.size() < 8 || depth >= 6) {
+        out.push_back(piece);
+        return;
+    }
+    std::array<std::vector<Vector>, 2> parts;
+    std::array<std::vector<double>, 2> partAlong;
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        parts[i < half ? 0 : 1].push_back(points[order[i]]);
+        partAlong[i < half ? 0 : 1].push_back(along[order[i]]);
+    }
+    splitPiece(parts[0], partAlong[0], depth + 1, out);
+    splitPiece(parts[1], partAlong[1], depth + 1, out);
+}
+
+// A component as a chain of straight pieces along its length.
+std::vector<Piece> fitComponent(const std::vector<Vector>& points,
+                                const std::vector<double>& along) {
     std::vector<Piece> pieces;
-    for (int count = 1; count <= kMaximumPieces; ++count) {
-        std::vector<std::vector<Vector>> buckets(static_cast<std::size_t>(count));
-        for (std::size_t i = 0; i < points.size(); ++i) {
-            const int bucket = std::min(count - 1, int((along[i] - minimum) / length * count));
-            buckets[std::size_t(bucket)].push_back(points[i]);
-        }
-        std::vector<Piece> candidate;
-        bool straight = true;
-        bool populated = true;
-        for (const std::vector<Vector>& bucket : buckets) {
-            if (bucket.size() < 4) {
-                populated = false;
-                break;
-            }
-            Piece piece = fitPiece(bucket, axis);
-            const double radius = 0.5 * (piece.startRadius + piece.endRadius);
-            straight = straight && piece.spread <= 0.12 * radius + 1e-4;
-            candidate.push_back(piece);
-        }
-        if (!populated) {
-            // Too few vertices for finer pieces: keep the previous split.
-            if (pieces.empty()) {
-                pieces = {fitPiece(points, axis)};
-            }
-            break;
-        }
-        pieces = std::move(candidate);
-        if (straight) {
-            break;
-        }
-    }
+    splitPiece(points, along, 0, pieces);
     // Consecutive pieces meet at the midpoint of their facing ends.
     for (std::size_t i = 1; i < pieces.size(); ++i) {
         const Vector joint = 0.5 * (pieces[i - 1].end + pieces[i].start);
@@ -238,6 +240,30 @@ std::vector<Piece> fitComponent(const std::vector<Vector>& points) {
         pieces[i].startRadius = radius;
     }
     return pieces;
+}
+
+// Geodesic (edge-path) distances over the welded vertex graph from `source`, by
+// Dijkstra; `distance` must hold infinity for the component's vertices.
+void geodesicDistances(std::uint32_t source,
+                       const std::vector<std::vector<std::pair<std::uint32_t, double>>>& adjacency,
+                       std::vector<double>& distance) {
+    using Entry = std::pair<double, std::uint32_t>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+    distance[source] = 0.0;
+    queue.emplace(0.0, source);
+    while (!queue.empty()) {
+        const auto [d, vertex] = queue.top();
+        queue.pop();
+        if (d > distance[vertex]) {
+            continue;
+        }
+        for (const auto& [next, length] : adjacency[vertex]) {
+            if (d + length < distance[next]) {
+                distance[next] = d + length;
+                queue.emplace(distance[next], next);
+            }
+        }
+    }
 }
 
 double distanceToSegment(const Vector& p, const Vector& a, const Vector& b, Vector& closest) {
@@ -314,26 +340,72 @@ std::vector<SkeletonSegment> SkeletonReconstructor::reconstruct(
     }
     // Points of each component, unique positions only (duplicates would weight seams).
     std::unordered_map<std::uint32_t, std::size_t> componentOf;
-    std::vector<std::vector<Vector>> componentPoints;
+    std::vector<std::vector<std::uint32_t>> componentVertices;
     for (std::uint32_t i = 0; i < positions.size(); ++i) {
         if (canonical[i] != i) {
             continue;
         }
         const std::uint32_t root = sets.find(i);
-        auto [it, inserted] = componentOf.emplace(root, componentPoints.size());
+        auto [it, inserted] = componentOf.emplace(root, componentVertices.size());
         if (inserted) {
-            componentPoints.emplace_back();
+            componentVertices.emplace_back();
         }
-        componentPoints[it->second].push_back(positions[i]);
+        componentVertices[it->second].push_back(i);
     }
+    std::vector<std::vector<std::pair<std::uint32_t, double>>> adjacency(positions.size());
+    for (const auto& [a, b] : edges) {
+        const std::uint32_t ca = canonical[a];
+        const std::uint32_t cb = canonical[b];
+        if (ca != cb) {
+            const double length = glm::length(positions[ca] - positions[cb]);
+            adjacency[ca].emplace_back(cb, length);
+            adjacency[cb].emplace_back(ca, length);
+        }
+    }
+    std::vector<double> geodesic(positions.size(), std::numeric_limits<double>::infinity());
 
     std::vector<Component> components;
-    for (const std::vector<Vector>& points : componentPoints) {
-        if (points.size() < 4) {
+    for (const std::vector<std::uint32_t>& vertices : componentVertices) {
+        if (vertices.size() < 4) {
             continue;
         }
+        std::vector<Vector> points;
+        for (std::uint32_t v : vertices) {
+            points.push_back(positions[v]);
+        }
+        // Double sweep: the vertex farthest (along the surface) from an end of the
+        // principal axis is one end of the stem; distances from it order the stem.
+        const Vector centroid = centroidOf(points);
+        std::array<double, 3> values{};
+        std::array<Vector, 3> vectors{};
+        covarianceEigen(points, centroid, values, vectors);
+        const Vector axis =
+            vectors[std::size_t(std::max_element(values.begin(), values.end()) - values.begin())];
+        std::uint32_t start = vertices.front();
+        for (std::uint32_t v : vertices) {
+            if (glm::dot(positions[v], axis) < glm::dot(positions[start], axis)) {
+                start = v;
+            }
+        }
+        geodesicDistances(start, adjacency, geodesic);
+        std::uint32_t end = start;
+        for (std::uint32_t v : vertices) {
+            if (geodesic[v] != std::numeric_limits<double>::infinity() &&
+                geodesic[v] > geodesic[end]) {
+                end = v;
+            }
+        }
+        for (std::uint32_t v : vertices) {
+            geodesic[v] = std::numeric_limits<double>::infinity();
+        }
+        geodesicDistances(end, adjacency, geodesic);
+        std::vector<double> along;
+        for (std::uint32_t v : vertices) {
+            along.push_back(geodesic[v]);
+            geodesic[v] = std::numeric_limits<double>::infinity();
+        }
         Component component;
-        component.pieces = fitComponent(points);
+        component.pieces = fitComponent(points, along);
         component.lowest = std::numeric_limits<double>::max();
         for (const Vector& p : points) {
             component.lowest = std::min(component.lowest, p.z);

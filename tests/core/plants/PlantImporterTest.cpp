@@ -143,13 +143,18 @@ TEST(PlantImporter, ReconstructedSkeletonFollowsTheGeneratedOne) {
             ASSERT_LE(steps, skeleton.size()) << "cycle at " << i;
         }
         EXPECT_EQ(roots, 1) << preset;
-        EXPECT_LT(glm::length(skeleton[0].start - model.skeleton[0].start),
-                  0.05f * model.skeleton[0].startRadius + 0.1f)
-            << preset << ": the root starts at the trunk base";
-        // Every reconstructed point lies near the generated axes (tolerance: the local
-        // radius plus 2 % of the plant height) and the generated axes are covered.
+        // The root starts at the trunk base, within the (flared) base radius.
         const float height = model.boundsMaximum().z - model.boundsMinimum().z;
+        EXPECT_LT(glm::length(skeleton[0].start - model.skeleton[0].start),
+                  model.skeleton[0].startRadius + 0.1f)
+            << preset << ": the root starts at the trunk base";
+        EXPECT_LT(skeleton[0].start.z, 0.05f * height) << preset;
+        // Every reconstructed point lies near the generated axes (tolerance: the local
+        // radius plus 1.5 % of the plant height; the limit is
+        // set by 3-sided twigs with 5 rings, too coarse to follow their bend closely) and the
+        // generated axes are covered.
         std::size_t far = 0;
+        float worst = 0.0f, worstRelative = 0.0f;
         for (const SkeletonSegment& segment : skeleton) {
             for (float t : {0.0f, 0.5f, 1.0f}) {
                 std::size_t nearest = 0;
@@ -157,15 +162,22 @@ TEST(PlantImporter, ReconstructedSkeletonFollowsTheGeneratedOne) {
                 const float distance = distanceToSkeleton(p, model.skeleton, &nearest);
                 const float radius = std::max(model.skeleton[nearest].startRadius,
                                               model.skeleton[nearest].endRadius);
-                far += distance > radius + 0.02f * height ? 1 : 0;
+                far += distance > radius + 0.015f * height ? 1 : 0;
+                worst = std::max(worst, distance);
+                worstRelative = std::max(worstRelative, distance / std::max(radius, 1e-3f));
             }
         }
         EXPECT_EQ(far, 0u) << preset << ": reconstructed points away from the generated skeleton";
+        std::printf(
+            "%s: %zu generated, %zu reconstructed segments, worst distance %.3f m (%.2f radii), "
+            "height %.1f m\n",
+            preset.c_str(), model.skeleton.size(), skeleton.size(), double(worst),
+            double(worstRelative), double(height));
         std::size_t uncovered = 0;
         for (const SkeletonSegment& segment : model.skeleton) {
             const glm::vec3 middle = 0.5f * (segment.start + segment.end);
             uncovered += distanceToSkeleton(middle, skeleton) >
-                                 std::max(segment.startRadius, segment.endRadius) + 0.02f * height
+                                 std::max(segment.startRadius, segment.endRadius) + 0.015f * height
                              ? 1
                              : 0;
         }
