@@ -24,27 +24,47 @@ std::uint8_t linearToSrgb(float linear) {
 
 RasterImage PlantRasterizer::renderSide(const PlantModel& model, int width, int height) {
     SYLVA_CHECK(width > 0 && height > 0);
+    const glm::vec3 minimum = model.boundsMinimum();
+    const glm::vec3 maximum = model.boundsMaximum();
+    if (!(minimum.x <= maximum.x)) {
+        RasterImage empty;
+        empty.width = width;
+        empty.height = height;
+        empty.rgba.assign(std::size_t(width) * std::size_t(height) * 4, 0);
+        return empty;
+    }
+    // Fit the x–z extent with a 3 % margin, the base near the bottom edge.
+    const float extentX = std::max(maximum.x - minimum.x, 1e-3f);
+    const float extentZ = std::max(maximum.z - minimum.z, 1e-3f);
+    const float scale = 0.94f * std::min(float(width) / extentX, float(height) / extentZ);
+    OrthographicView view;
+    view.origin = glm::vec3(0.5f * (minimum.x + maximum.x), 0.0f, minimum.z);
+    view.minimum = glm::vec2(-0.5f * float(width) / scale, -0.03f * float(height) / scale);
+    view.maximum = glm::vec2(0.5f * float(width) / scale, 0.97f * float(height) / scale);
+    return renderOrthographic(model, view, width, height);
+}
+
+RasterImage PlantRasterizer::renderOrthographic(
+    const PlantModel& model, const OrthographicView& view, int width, int height,
+    const std::vector<std::vector<bool>>* triangleMask) {
+    SYLVA_CHECK(width > 0 && height > 0);
     RasterImage image;
     image.width = width;
     image.height = height;
     image.rgba.assign(std::size_t(width) * std::size_t(height) * 4, 0);
     std::vector<float> depth(std::size_t(width) * std::size_t(height),
                              std::numeric_limits<float>::max());
-    const glm::vec3 minimum = model.boundsMinimum();
-    const glm::vec3 maximum = model.boundsMaximum();
-    if (!(minimum.x <= maximum.x)) {
-        return image;
-    }
-    const float extentX = std::max(maximum.x - minimum.x, 1e-3f);
-    const float extentZ = std::max(maximum.z - minimum.z, 1e-3f);
-    const float scale = 0.94f * std::min(float(width) / extentX, float(height) / extentZ);
-    const float centreX = 0.5f * (minimum.x + maximum.x);
-    const glm::vec3 light = glm::normalize(glm::vec3(-0.5f, -0.6f, 0.8f));
+    const glm::vec3 toward = glm::cross(view.right, view.up);  // towards the eye
+    const glm::vec2 scale(float(width) / std::max(view.maximum.x - view.minimum.x, 1e-9f),
+                          float(height) / std::max(view.maximum.y - view.minimum.y, 1e-9f));
+    const glm::vec3 light = glm::normalize(0.5f * toward - 0.5f * view.right + 0.8f * view.up);
     auto project = [&](const glm::vec3& p) {
-        return glm::vec3(0.5f * float(width) + (p.x - centreX) * scale,
-                         float(height) * 0.97f - (p.z - minimum.z) * scale, p.y);
+        const glm::vec3 d = p - view.origin;
+        return glm::vec3((glm::dot(d, view.right) - view.minimum.x) * scale.x,
+                         (view.maximum.y - glm::dot(d, view.up)) * scale.y, -glm::dot(d, toward));
     };
-    for (const PlantMesh& mesh : model.meshes) {
+    for (std::size_t meshIndex = 0; meshIndex < model.meshes.size(); ++meshIndex) {
+        const PlantMesh& mesh = model.meshes[meshIndex];
         const PlantMaterial* material =
             mesh.material >= 0 && std::size_t(mesh.material) < model.materials.size()
                 ? &model.materials[std::size_t(mesh.material)]
@@ -56,6 +76,9 @@ RasterImage PlantRasterizer::renderSide(const PlantModel& model, int width, int 
                 ? &material->baseColorTexture
                 : nullptr;
         for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+            if (triangleMask != nullptr && !(*triangleMask)[meshIndex][t / 3]) {
+                continue;
+            }
             const std::uint32_t i0 = mesh.indices[t], i1 = mesh.indices[t + 1],
                                 i2 = mesh.indices[t + 2];
             const glm::vec3 a = project(mesh.positions[i0]);
@@ -111,11 +134,12 @@ RasterImage PlantRasterizer::renderSide(const PlantModel& model, int width, int 
                     if (glm::length(normal) > 0.0f) {
                         normal = glm::normalize(normal);
                     }
-                    if (normal.y > 0.0f) {
+                    if (glm::dot(normal, toward) < 0.0f) {
                         normal = -normal;  // light the face we see
                     }
-                    const float lambert = std::max(0.0f, glm::dot(normal, light));
-                    colour *= 0.35f + 0.9f * lambert;
+                    if (view.lit) {
+                        colour *= 0.35f + 0.9f * std::max(0.0f, glm::dot(normal, light));
+                    }
                     depth[pixel] = z;
                     std::uint8_t* out = &image.rgba[pixel * 4];
                     out[0] = linearToSrgb(colour.r);

@@ -22,8 +22,25 @@ struct RasterImage {
     std::vector<std::uint8_t> rgba;
 };
 
+// An orthographic view: image x runs along `right`, image up along `up` (both unit,
+// orthogonal, model frame); the eye looks along −cross(right, up). The image covers
+// [minimum, maximum] in (right, up) coordinates relative to `origin`.
+struct OrthographicView {
+    glm::vec3 origin{0.0f};
+    glm::vec3 right{1.0f, 0.0f, 0.0f};
+    glm::vec3 up{0.0f, 0.0f, 1.0f};
+    glm::vec2 minimum{-1.0f};
+    glm::vec2 maximum{1.0f};
+    bool lit = true;  // false: unlit albedo (texture bakes)
+};
+
 class PlantRasterizer {
 public:
+    // Renders the triangles of `model` (all, or those whose flag in `triangleMask` is set;
+    // the mask is indexed by mesh, then triangle) into width × height pixels.
+    static RasterImage renderOrthographic(
+        const PlantModel& model, const OrthographicView& view, int width, int height,
+        const std::vector<std::vector<bool>>* triangleMask = nullptr);
     // Renders the model's side view fitted into width × height (aspect kept, the
     // base at the bottom with a small margin). width, height > 0 (SYLVA_CHECK).
     static RasterImage renderSide(const PlantModel& model, int width, int height);
