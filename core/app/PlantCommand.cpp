@@ -1,7 +1,8 @@
 // `sylva plant generate --preset NAME --seed N [--leaves N] -o MODEL.gltf|.glb`: a
 // procedural tree (PlantGenerator) written as glTF, atomically.
-// `sylva plant montage [--seed N] [--leaves N] [--size WxH] -o IMAGE.png`: every preset
-// side by side, rendered by the software rasterizer (for the eye).
+// `sylva plant montage [--seed N] [--leaves N] [--size WxH] [--billboards] -o IMAGE.png`:
+// every preset side by side, rendered by the software rasterizer (for the eye); with
+// --billboards their finest billboard-cloud level instead.
 // `sylva plant info MODEL`: imports a model and prints what the importer made of it.
 #include <charconv>
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include "Commands.h"
 #include "ProjectSession.h"
 #include "sylva/core/image/ImageWriter.h"
+#include "sylva/core/plants/BillboardCloudBuilder.h"
 #include "sylva/core/plants/PlantGenerator.h"
 #include "sylva/core/plants/PlantGltfWriter.h"
 #include "sylva/core/plants/PlantImporter.h"
@@ -21,7 +23,7 @@ namespace {
 
 const char* kUsage =
     "usage: sylva plant generate --preset NAME --seed N [--leaves N] -o MODEL.gltf|MODEL.glb\n"
-    "       sylva plant montage [--seed N] [--leaves N] [--size WxH] -o IMAGE.png\n"
+    "       sylva plant montage [--seed N] [--leaves N] [--size WxH] [--billboards] -o IMAGE.png\n"
     "       sylva plant info MODEL.gltf|.glb|.obj\n";
 
 template <typename Integer>
@@ -127,6 +129,15 @@ int runMontage(const ParsedCommandLine& command) {
             reportError(model.error().message);
             return 1;
         }
+        if (command.has("billboards")) {
+            // Each tree as its finest billboard-cloud level, for comparison.
+            Result<BillboardCloud> cloud = BillboardCloudBuilder::build(*model);
+            if (!cloud) {
+                reportError(cloud.error().message);
+                return 1;
+            }
+            model = BillboardCloudBuilder::levelModel(cloud->levels.front(), model->name);
+        }
         const RasterImage tile = PlantRasterizer::renderSide(*model, width, height);
         for (int y = 0; y < height; ++y) {
             for (int x = 0; x < width; ++x) {
@@ -192,7 +203,7 @@ int runPlant(const std::vector<std::string>& originalArguments) {
     if (action == "generate") {
         specs.insert(specs.end(), {{"preset"}, {"seed"}, {"leaves"}, {"out"}});
     } else if (action == "montage") {
-        specs.insert(specs.end(), {{"seed"}, {"leaves"}, {"size"}, {"out"}});
+        specs.insert(specs.end(), {{"seed"}, {"leaves"}, {"size"}, {"out"}, {"billboards", false}});
     } else if (action != "info") {
         return usageError("unknown plant action '" + action + "' (generate, montage, info)");
     }

@@ -27,7 +27,7 @@ void printUsage(std::FILE* stream) {
         "                 the language reference from the schema registry\n"
         "  plant generate --preset NAME --seed N [--leaves N] -o MODEL.gltf|.glb\n"
         "                 a procedural tree (oak, conifer, birch, bush) as glTF\n"
-        "  plant montage [--seed N] [--leaves N] [--size WxH] -o IMAGE.png\n"
+        "  plant montage [--seed N] [--leaves N] [--size WxH] [--billboards] -o IMAGE.png\n"
         "                 the presets side by side (software rasterizer)\n"
         "  plant info MODEL\n"
         "                 import a plant model (.gltf, .glb, .obj) and summarise it\n"

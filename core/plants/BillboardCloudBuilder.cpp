@@ -702,4 +702,37 @@ Result<BillboardCloud> BillboardCloudBuilder::build(const PlantModel& model,
     return cloud;
 }
 
+PlantModel BillboardCloudBuilder::levelModel(const BillboardLevel& level, const std::string& name) {
+    PlantModel model;
+    model.name = name;
+    PlantMaterial material;
+    material.name = "billboards";
+    material.baseColorTexture = level.atlas;
+    material.alphaMasked = true;
+    model.materials.push_back(material);
+    for (PlantPart part : {PlantPart::Leaf, PlantPart::Branch}) {
+        PlantMesh mesh;
+        mesh.part = part;
+        mesh.material = 0;
+        mesh.name = part == PlantPart::Leaf ? "leaf billboards" : "branch billboards";
+        for (const BillboardQuad& quad : level.quads) {
+            if (quad.part != part) {
+                continue;
+            }
+            const std::uint32_t first = std::uint32_t(mesh.positions.size());
+            for (int c = 0; c < 4; ++c) {
+                mesh.positions.push_back(quad.corners[c]);
+                mesh.normals.push_back(quad.normal);
+                mesh.uvs.push_back(quad.atlasUvs[c]);
+            }
+            mesh.indices.insert(mesh.indices.end(),
+                                {first, first + 1, first + 2, first, first + 2, first + 3});
+        }
+        if (!mesh.indices.empty()) {
+            model.meshes.push_back(std::move(mesh));
+        }
+    }
+    return model;
+}
+
 }  // namespace sylva

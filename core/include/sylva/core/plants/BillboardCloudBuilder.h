@@ -12,6 +12,7 @@
 // integrator stores BillboardCloud in .plod files.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "sylva/core/base/Result.h"
@@ -59,6 +60,9 @@ public:
     // Fails when the model has no triangles or the options are out of range.
     static Result<BillboardCloud> build(const PlantModel& model,
                                         const BillboardCloudOptions& options = {});
+    // One level as a renderable PlantModel: one mesh of textured quads (two triangles
+    // each) per part, one alpha-masked material with the atlas.
+    static PlantModel levelModel(const BillboardLevel& level, const std::string& name);
 };
 
 }  // namespace sylva
