@@ -348,6 +348,26 @@ TEST_F(PlantImporterErrors, ExternalBufferAndImageLoad) {
     expectSameModel(model, *imported);
 }
 
+TEST_F(PlantImporterErrors, ExternalImageAndRootNodeSkeleton) {
+    // The leaf texture as a PNG file next to the .gltf, and the skeleton moved from the
+    // asset to the root node's extras.
+    nlohmann::json json = nlohmann::json::parse(gltf);
+    const PlantTexture& texture = model.materials[1].baseColorTexture;
+    ASSERT_TRUE(ImageWriter::writeRgba8(folder / "leaf.png", texture.width, texture.height, texture.rgba));
+    json["images"][0].erase("uri");
+    json["images"][0]["uri"] = "leaf.png";
+    json["nodes"][0]["extras"]["sylva_skeleton"] = json["asset"]["extras"]["sylva_skeleton"];
+    json["asset"].erase("extras");
+    const fs::path path = folder / "external-image.gltf";
+    writeText(path, json.dump());
+    Result<PlantModel> imported = PlantImporter::import(path);
+    ASSERT_TRUE(imported) << imported.error().message;
+    expectSameModel(model, *imported);
+    json["images"][0]["uri"] = "gone.png";
+    writeText(path, json.dump());
+    EXPECT_EQ(importError(path), path.string() + ": image 0 refers to the missing file 'gone.png'");
+}
+
 TEST_F(PlantImporterErrors, DracoIsUnsupported) {
     nlohmann::json json = nlohmann::json::parse(gltf);
     json["extensionsUsed"] = {"KHR_draco_mesh_compression"};
