@@ -119,6 +119,9 @@ public:
             if (plane.part == PlantPart::Branch) {
                 addCardboard(planes, planes.size() - 1);
             }
+            if (int(planes.size()) > planeLimit) {
+                return false;  // a cardboard plane overshot the budget
+            }
         }
         return true;
     }

@@ -485,7 +485,7 @@ Result<TreeParameters> PlantGenerator::preset(const std::string& name) {
              degrees(10.0f), degrees(140.0f), degrees(20.0f), 4},
         };
         tree.leaves = 22;
-        tree.leafScale = 0.16f;
+        tree.leafScale = 0.2f;
         tree.leafScaleX = 0.65f;
         tree.leafDownAngle = degrees(50.0f);
         tree.leafRotate = degrees(137.5f);
@@ -508,8 +508,8 @@ Result<TreeParameters> PlantGenerator::preset(const std::string& name) {
             {0.4f, 0.05f, 1.0f, 2, 0.0f, 0.0f, degrees(10.0f), 0.0f, 0.0f, 0.0f, 14, degrees(55.0f),
              degrees(10.0f), degrees(-90.0f), degrees(15.0f), 3},
         };
-        tree.leaves = 16;
-        tree.leafScale = 0.28f;
+        tree.leaves = 22;
+        tree.leafScale = 0.34f;
         tree.leafScaleX = 0.55f;
         tree.leafDownAngle = degrees(40.0f);
         tree.leafRotate = degrees(-90.0f);
@@ -534,7 +534,7 @@ Result<TreeParameters> PlantGenerator::preset(const std::string& name) {
              degrees(40.0f), degrees(10.0f), degrees(140.0f), degrees(20.0f), 3},
         };
         tree.leaves = 18;
-        tree.leafScale = 0.12f;
+        tree.leafScale = 0.14f;
         tree.leafScaleX = 0.7f;
         tree.leafDownAngle = degrees(60.0f);
         tree.leafRotate = degrees(137.5f);
