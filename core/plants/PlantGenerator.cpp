@@ -96,7 +96,6 @@ struct Stem {
     std::vector<int> segments;    // skeleton index of points[i] → points[i + 1]
     float length = 0.0f;          // of the whole stem (clones share their stem's)
     float offsetStart = 0.0f;     // distance from the stem base at points[0]
-    float lengthInParent = 0.0f;  // parent stem length (for child counts)
     float offsetInParent = 0.0f;  // where this stem sits on its parent
     float parentLength = 0.0f;
     float childDensity = 1.0f;  // share of children after splits

@@ -4,8 +4,9 @@
 //
 // Formats: glTF 2.0 (.gltf with embedded or external buffers and images, .glb) through
 // tinygltf, and Wavefront OBJ with its .mtl (Kd, d/Tr, map_Kd, map_d) through a small
-// reader of our own (OpenMesh's OBJ reader keeps only map_Kd, drops map_d and the
-// per-face material names, and reports bad indices only to its log stream).
+// reader of our own (OpenMesh 9.0's OBJ reader knows map_Kd but not map_d, builds a
+// half-edge mesh that rejects non-manifold leaf geometry, and reports bad indices only
+// to its log stream, so located error messages would be impossible).
 //
 // Frames: both formats are taken as +Y up (glTF by specification, OBJ by the common
 // convention) and converted to the model frame, +Z up: file (x, y, z) → (x, −z, y).

@@ -3,14 +3,16 @@
 // branch structure "can be reconstructed from the source model").
 //
 // Method: vertices welded by position; connected components of the triangle graph are
-// the stems. Each component is fitted by cylinders: its principal (PCA) axis, split into
-// equal pieces along that axis until every piece is straight (the spread of vertex
-// distances to the piece's own PCA axis is small against its radius), each piece a
-// truncated cone (axis through the piece's centroid, radii by a least-squares line
-// of the distance to the axis over the position along it). Components are linked into a
-// forest and then one tree, Prim-style: the root is the lowest, thickest component;
-// repeatedly the unattached component with an end closest to an attached segment's axis
-// attaches there (that end becomes its start, parent = that segment).
+// the stems. Each stem is ordered by geodesic (edge-path) distance from one end (a double
+// Dijkstra sweep starting at the extreme of its principal axis) and fitted by cylinders:
+// split recursively at the median of that distance until every piece is straight (radial
+// spread and bend small against its radius), each piece a truncated cone (axis chosen
+// among the piece's principal axes and its end-to-end direction by the smallest radial
+// residual; radii by a least-squares line of the distance to the axis over the position
+// along it). Stems are linked into one tree, Prim-style: the root is the lowest,
+// thickest component; repeatedly the unattached component with an end closest to an
+// attached segment's axis attaches there (that end becomes its start, on the parent's
+// axis; parent = that segment).
 //
 // Frame and units: those of the input (metres, +Z up). Pure function, no failure mode:
 // an empty input gives an empty skeleton.
