@@ -613,6 +613,27 @@ Result<BillboardCloud> BillboardCloudBuilder::build(const PlantModel& model,
                     high = glm::max(high, p);
                 }
             }
+            if (!plane.cardboard) {
+                // §3.3.7: the texture shows every face of the part valid for the plane
+                // (not only those simplified onto it) that falls inside its rectangle,
+                // which makes the foliage look more solid.
+                for (const Face& face : levelFaces) {
+                    if (face.part != plane.part || face.plane < 0 ||
+                        mask[face.mesh][face.triangle]) {
+                        continue;
+                    }
+                    bool inside = true;
+                    for (std::uint32_t vertex : face.vertices) {
+                        const glm::dvec2 p(glm::dot(original[vertex] - origin, right),
+                                           glm::dot(original[vertex] - origin, up));
+                        inside = inside &&
+                                 std::abs(glm::dot(plane.normal, positions[vertex]) -
+                                          plane.offset) <= epsilon &&
+                                 p.x >= low.x && p.x <= high.x && p.y >= low.y && p.y <= high.y;
+                    }
+                    mask[face.mesh][face.triangle] = inside;
+                }
+            }
             const int width =
                 std::clamp(int(std::ceil((high.x - low.x) * texelsPerMetre)) + 2, 4, 512);
             const int height =
