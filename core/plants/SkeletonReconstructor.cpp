@@ -175,11 +175,12 @@ Piece fitPiece(const std::vector<Vector>& points, const Vector& preferred) {
 }
 
 // Fits a cone to `points`; when they are not straight enough (radial spread above
-// 12 % of the radius, or a bend off the axis) splits them at the median of `along` (their geodesic
-// distance from one end of the stem, see reconstruct) and recurses, so curved stems become chains
-// of short straight pieces. Splitting by geodesic distance rather than by projection keeps the arms
-// of a U-shaped stem apart. Median splits keep both halves populated; depth 6 bounds a stem at 64
-// pieces. Pieces come out ordered by `along`, each oriented from its low to its high end.
+// 12 % of the radius, or a bend off the axis) splits them near the median of `along` (their
+// geodesic distance from one end of the stem, see reconstruct) and recurses, so curved stems become
+// chains of short straight pieces. Splitting by geodesic distance rather than by projection keeps
+// the arms of a U-shaped stem apart. Cuts keep at least four points on each side; depth 6 bounds a
+// stem at 64 pieces. Pieces come out ordered by `along`, each oriented from its low to its high
+// end.
 void splitPiece(const std::vector<Vector>& points, const std::vector<double>& along, int depth,
                 std::vector<Piece>& out) {
     std::vector<std::size_t> order(points.size());
@@ -212,14 +213,51 @@ void splitPiece(const std::vector<Vector>& points, const std::vector<double>& al
     const bool straight =
         piece.spread <= 0.12 * radius + 1e-4 && bend <= 0.1 * radius + 0.005 * axisLength;
     if (straight || points.size() < 8 || depth >= 6) {
-        out.push_back(piece);
+        // Ends: the centroids of the first and last sixth of the points in stem order
+        // (an end ring's centre), projected on the axis. Extreme projections would
+        // overshoot by the radius times the axis tilt, badly at a flared trunk base.
+        Piece ends = piece;
+        if (axisLength > 0.0 && points.size() >= 6) {
+            const glm::dvec3 unit = axis / axisLength;
+            const std::size_t sixth = std::max<std::size_t>(order.size() / 6, 1);
+            Vector first(0.0);
+            Vector last(0.0);
+            for (std::size_t i = 0; i < sixth; ++i) {
+                first += points[order[i]];
+                last += points[order[order.size() - 1 - i]];
+            }
+            first /= double(sixth);
+            last /= double(sixth);
+            const double t0 = glm::dot(first - piece.start, unit);
+            const double t1 = glm::dot(last - piece.start, unit);
+            if (t1 > t0) {
+                const double slope = (piece.endRadius - piece.startRadius) / axisLength;
+                ends.start = piece.start + unit * t0;
+                ends.end = piece.start + unit * t1;
+                ends.startRadius = std::max(0.0, piece.startRadius + slope * t0);
+                ends.endRadius = std::max(0.0, piece.startRadius + slope * t1);
+            }
+        }
+        out.push_back(ends);
         return;
+    }
+    // Cut at the widest gap in stem order within the middle half, so whole rings of a
+    // tube stay together (a cut through a ring biases both pieces' centroids).
+    std::size_t cut = half;
+    double widest = -1.0;
+    for (std::size_t i = std::max<std::size_t>(order.size() / 4, 4);
+         i + 4 <= order.size() && i <= 3 * order.size() / 4; ++i) {
+        const double gap = along[order[i]] - along[order[i - 1]];
+        if (gap > widest) {
+            widest = gap;
+            cut = i;
+        }
     }
     std::array<std::vector<Vector>, 2> parts;
     std::array<std::vector<double>, 2> partAlong;
     for (std::size_t i = 0; i < order.size(); ++i) {
-        parts[i < half ? 0 : 1].push_back(points[order[i]]);
-        partAlong[i < half ? 0 : 1].push_back(along[order[i]]);
+        parts[i < cut ? 0 : 1].push_back(points[order[i]]);
+        partAlong[i < cut ? 0 : 1].push_back(along[order[i]]);
     }
     splitPiece(parts[0], partAlong[0], depth + 1, out);
     splitPiece(parts[1], partAlong[1], depth + 1, out);
@@ -244,13 +282,15 @@ std::vector<Piece> fitComponent(const std::vector<Vector>& points,
 
 // Geodesic (edge-path) distances over the welded vertex graph from `source`, by
 // Dijkstra; `distance` must hold infinity for the component's vertices.
-void geodesicDistances(std::uint32_t source,
+void geodesicDistances(const std::vector<std::uint32_t>& sources,
                        const std::vector<std::vector<std::pair<std::uint32_t, double>>>& adjacency,
                        std::vector<double>& distance) {
     using Entry = std::pair<double, std::uint32_t>;
     std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-    distance[source] = 0.0;
-    queue.emplace(0.0, source);
+    for (std::uint32_t source : sources) {
+        distance[source] = 0.0;
+        queue.emplace(0.0, source);
+    }
     while (!queue.empty()) {
         const auto [d, vertex] = queue.top();
         queue.pop();
@@ -278,7 +318,7 @@ double distanceToSegment(const Vector& p, const Vector& a, const Vector& b, Vect
 struct Component {
     std::vector<Piece> pieces;
     double lowest = 0.0;
-    double thickest = 0.0;
+    double baseRadius = 0.0;  // radius at the chain's lower end
 };
 
 struct Attachment {
@@ -363,6 +403,22 @@ std::vector<SkeletonSegment> SkeletonReconstructor::reconstruct(
         }
     }
     std::vector<double> geodesic(positions.size(), std::numeric_limits<double>::infinity());
+    // Boundary edges (used by one triangle only): the open ends of tubes.
+    std::unordered_map<std::uint64_t, int> edgeUse;
+    for (const auto& [a, b] : edges) {
+        const std::uint32_t ca = std::min(canonical[a], canonical[b]);
+        const std::uint32_t cb = std::max(canonical[a], canonical[b]);
+        if (ca != cb) {
+            ++edgeUse[(std::uint64_t(ca) << 32) | cb];
+        }
+    }
+    std::vector<std::vector<std::uint32_t>> boundary(positions.size());
+    for (const auto& [key, uses] : edgeUse) {
+        if (uses == 1) {
+            boundary[std::uint32_t(key >> 32)].push_back(std::uint32_t(key & 0xFFFFFFFFu));
+            boundary[std::uint32_t(key & 0xFFFFFFFFu)].push_back(std::uint32_t(key >> 32));
+        }
+    }
 
     std::vector<Component> components;
     for (const std::vector<std::uint32_t>& vertices : componentVertices) {
@@ -387,7 +443,7 @@ std::vector<SkeletonSegment> SkeletonReconstructor::reconstruct(
                 start = v;
             }
         }
-        geodesicDistances(start, adjacency, geodesic);
+        geodesicDistances({start}, adjacency, geodesic);
         std::uint32_t end = start;
         for (std::uint32_t v : vertices) {
             if (geodesic[v] != std::numeric_limits<double>::infinity() &&
@@ -398,7 +454,17 @@ std::vector<SkeletonSegment> SkeletonReconstructor::reconstruct(
         for (std::uint32_t v : vertices) {
             geodesic[v] = std::numeric_limits<double>::infinity();
         }
-        geodesicDistances(end, adjacency, geodesic);
+        // Distances from the whole open end (the boundary loop through `end`, when it
+        // lies on one) so that every ring of a tube gets one distance, even a fat one.
+        std::vector<std::uint32_t> sources = {end};
+        for (std::size_t i = 0; i < sources.size(); ++i) {
+            for (std::uint32_t next : boundary[sources[i]]) {
+                if (std::find(sources.begin(), sources.end(), next) == sources.end()) {
+                    sources.push_back(next);
+                }
+            }
+        }
+        geodesicDistances(sources, adjacency, geodesic);
         std::vector<double> along;
         for (std::uint32_t v : vertices) {
             along.push_back(geodesic[v]);
@@ -410,16 +476,18 @@ std::vector<SkeletonSegment> SkeletonReconstructor::reconstruct(
         for (const Vector& p : points) {
             component.lowest = std::min(component.lowest, p.z);
         }
-        for (const Piece& piece : component.pieces) {
-            component.thickest = std::max({component.thickest, piece.startRadius, piece.endRadius});
-        }
+        component.baseRadius = component.pieces.front().start.z <= component.pieces.back().end.z
+                                   ? component.pieces.front().startRadius
+                                   : component.pieces.back().endRadius;
         components.push_back(std::move(component));
     }
     if (components.empty()) {
         return {};
     }
 
-    // Root: the thickest among the components that reach down to the lowest point.
+    // Root: among the components that reach down to the lowest point, the one thickest
+    // at its lower end (a trunk base, not a drooping branch tip; whole-chain maxima are
+    // fooled by a badly fitted piece).
     double lowest = std::numeric_limits<double>::max();
     double highest = std::numeric_limits<double>::lowest();
     for (const Vector& p : positions) {
@@ -429,8 +497,9 @@ std::vector<SkeletonSegment> SkeletonReconstructor::reconstruct(
     const double reach = lowest + 0.02 * (highest - lowest) + 1e-6;
     std::size_t root = 0;
     for (std::size_t i = 0; i < components.size(); ++i) {
-        if (components[i].lowest <= reach && (components[root].lowest > reach ||
-                                              components[i].thickest > components[root].thickest)) {
+        if (components[i].lowest <= reach &&
+            (components[root].lowest > reach ||
+             components[i].baseRadius > components[root].baseRadius)) {
             root = i;
         }
     }
