@@ -23,6 +23,13 @@ endif()
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(GEOGRAPHICLIB REQUIRED IMPORTED_TARGET geographiclib)
 
+# Plants (sylva_core): tinygltf is used header-only (TINYGLTF_IMPLEMENTATION in
+# core/plants/TinyGltf.cpp); its image code is the packaged stb (libstb-dev), whose
+# headers live in /usr/include/stb and whose implementation is libstb.so.
+find_path(SYLVA_STB_INCLUDE_DIR stb_image.h PATHS /usr/include/stb REQUIRED)
+find_library(SYLVA_STB_LIBRARY stb REQUIRED)
+find_path(SYLVA_TINYGLTF_INCLUDE_DIR tiny_gltf.h REQUIRED)
+
 # GL side (sylva_render only).
 find_package(glfw3 3.3 CONFIG REQUIRED)
 pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa)

@@ -1,10 +1,14 @@
 // `sylva bench SUITE [--json]`: benchmark suites, dispatched from one table so other
 // suites can be added as one line each. Suite `dsl` parses, resolves and checks a
 // generated project of 5,000 lines (500 sources, 20 scenarios, 50 cameras). Suite
-// `vector` measures rasterize (polygons with outlines) and plants (scattering) tiles.
+// `vector` measures rasterize (polygons with outlines) and plants (scattering) tiles;
+// `plants` the plant generator, importer and billboard-cloud builder.
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <initializer_list>
 #include <string>
@@ -19,6 +23,10 @@
 #include "sylva/core/sources/PlantsSource.h"
 #include "sylva/core/sources/RasterizeSource.h"
 #include "sylva/core/tiles/TileEvaluator.h"
+#include "sylva/core/plants/BillboardCloudBuilder.h"
+#include "sylva/core/plants/PlantGenerator.h"
+#include "sylva/core/plants/PlantGltfWriter.h"
+#include "sylva/core/plants/PlantImporter.h"
 #include "sylva/dsl/ProjectLoader.h"
 
 #include <cmath>
@@ -222,6 +230,76 @@ int benchVector(std::vector<Metric>& metrics) {
     return 0;
 }
 
+// Suite `plants`: the oak preset with 27,000 leaves generated, written as .glb, imported
+// with its skeleton and with the skeleton reconstructed, and a billboard cloud of the
+// oak with 5,000 leaves; medians of 3 runs in milliseconds.
+int benchPlants(std::vector<Metric>& metrics) {
+    const std::filesystem::path folder = std::filesystem::temp_directory_path() /
+                                         ("sylva-bench-plants-" + std::to_string(::getpid()));
+    const std::filesystem::path path = folder / "oak.glb";
+    auto median = [](std::vector<double> times) {
+        std::sort(times.begin(), times.end());
+        return times[times.size() / 2];
+    };
+    auto milliseconds = [](auto start) {
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count();
+    };
+    std::vector<double> generate, write, import, reconstruct, billboards;
+    std::size_t triangles = 0;
+    for (int run = 0; run < 3; ++run) {
+        PlantGeneratorOptions options;
+        options.seed = 1;
+        options.leafCount = 27000;
+        auto start = std::chrono::steady_clock::now();
+        Result<PlantModel> model =
+            PlantGenerator::generate(PlantGenerator::preset("oak").value(), options);
+        generate.push_back(milliseconds(start));
+        if (!model) {
+            reportError(model.error().message);
+            return 1;
+        }
+        triangles = model->triangleCount(PlantPart::Leaf) + model->triangleCount(PlantPart::Branch);
+        start = std::chrono::steady_clock::now();
+        if (Status written = PlantGltfWriter::write(*model, path); !written) {
+            reportError(written.error().message);
+            return 1;
+        }
+        write.push_back(milliseconds(start));
+        start = std::chrono::steady_clock::now();
+        Result<PlantModel> imported = PlantImporter::import(path);
+        import.push_back(milliseconds(start));
+        PlantImportOptions noSkeleton;
+        noSkeleton.useFileSkeleton = false;
+        start = std::chrono::steady_clock::now();
+        Result<PlantModel> rebuilt = PlantImporter::import(path, noSkeleton);
+        reconstruct.push_back(milliseconds(start));
+        if (!imported || !rebuilt) {
+            reportError(!imported ? imported.error().message : rebuilt.error().message);
+            return 1;
+        }
+        options.leafCount = 5000;
+        Result<PlantModel> small =
+            PlantGenerator::generate(PlantGenerator::preset("oak").value(), options);
+        start = std::chrono::steady_clock::now();
+        Result<BillboardCloud> cloud = BillboardCloudBuilder::build(*small);
+        billboards.push_back(milliseconds(start));
+        if (!cloud) {
+            reportError(cloud.error().message);
+            return 1;
+        }
+    }
+    std::error_code ignored;
+    std::filesystem::remove_all(folder, ignored);
+    metrics.push_back({"generate_oak_27k_ms", median(generate)});
+    metrics.push_back({"write_glb_ms", median(write)});
+    metrics.push_back({"import_glb_ms", median(import)});
+    metrics.push_back({"import_reconstruct_skeleton_ms", median(reconstruct)});
+    metrics.push_back({"billboard_cloud_oak_5k_ms", median(billboards)});
+    metrics.push_back({"triangles", double(triangles)});
+    return 0;
+}
+
 struct Suite {
     const char* name;
     std::function<int(std::vector<Metric>&)> run;
@@ -231,6 +309,7 @@ struct Suite {
 const Suite kSuites[] = {
     {"dsl", benchDsl},
     {"vector", benchVector},
+    {"plants", benchPlants},
 };
 
 }  // namespace

@@ -18,6 +18,7 @@ int runDoc(const std::vector<std::string>& arguments);
 int runBench(const std::vector<std::string>& arguments);
 int runTerrainBench(const std::vector<std::string>& arguments);
 int runTilesBench(const std::vector<std::string>& arguments);
+int runPlant(const std::vector<std::string>& arguments);
 
 // Removes every `--set block.attribute=value` (or `--set=...`) from `arguments` and
 // returns them as (path, value) pairs; the option may repeat, which CommandLine does not

@@ -17,7 +17,8 @@ void printUsage(std::FILE* stream) {
         "usage: sylva COMMAND [options]\n"
         "\n"
         "commands:\n"
-        "  render PROJECT [--views NAME] [--out DIR] [--size WxH] [--gl egl|osmesa|glfw] [-D name=value]\n"
+        "  render PROJECT [--views NAME] [--out DIR] [--size WxH] [--gl egl|osmesa|glfw] [-D "
+        "name=value]\n"
         "                 render the project's views to images\n"
         "  watch PROJECT [--views NAME] [--camera NAME] [--out DIR] [--size WxH] [--exit-after N]\n"
         "                 re-render on every change of the project or its data (headless)\n"
@@ -30,6 +31,12 @@ void printUsage(std::FILE* stream) {
         "                 print the evaluated model of every scenario as JSON\n"
         "  doc [KIND] [--markdown] [--update FILE]\n"
         "                 the language reference from the schema registry\n"
+        "  plant generate --preset NAME --seed N [--leaves N] -o MODEL.gltf|.glb\n"
+        "                 a procedural tree (oak, conifer, birch, bush) as glTF\n"
+        "  plant montage [--seed N] [--leaves N] [--size WxH] [--billboards] -o IMAGE.png\n"
+        "                 the presets side by side (software rasterizer)\n"
+        "  plant info MODEL\n"
+        "                 import a plant model (.gltf, .glb, .obj) and summarise it\n"
         "  bench SUITE [--json]\n"
         "                 run a benchmark suite (dsl, terrain)\n"
         "\n"
@@ -73,6 +80,9 @@ int main(int argc, char** argv) {
     }
     if (command == "doc") {
         return sylva::app::runDoc(arguments);
+    }
+    if (command == "plant") {
+        return sylva::app::runPlant(arguments);
     }
     if (command == "bench") {
         return sylva::app::runBench(arguments);
