@@ -119,6 +119,9 @@ int runBench(const std::vector<std::string>& arguments) {
     if (!arguments.empty() && arguments[0] == "terrain") {
         return runTerrainBench(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
     }
+    if (!arguments.empty() && arguments[0] == "plantlod") {
+        return runPlantLodBench(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
+    }
     const ParsedCommandLine command =
         parseCommandLine(arguments, {{"help", false}, {"json", false}});
     std::string names;
@@ -126,11 +129,11 @@ int runBench(const std::vector<std::string>& arguments) {
         append(names, {names.empty() ? "" : ", ", suite.name});
     }
     if (command.has("help")) {
-        std::printf("usage: sylva bench SUITE [--json]\nsuites: %s, terrain\n", names.c_str());
+        std::printf("usage: sylva bench SUITE [--json]\nsuites: %s, terrain, plantlod\n", names.c_str());
         return 0;
     }
     if (!command.error.empty() || command.positional.size() != 1) {
-        reportError(command.error.empty() ? "bench needs one suite: " + names + ", terrain" : command.error);
+        reportError(command.error.empty() ? "bench needs one suite: " + names + ", terrain, plantlod" : command.error);
         return 2;
     }
     for (const Suite& suite : kSuites) {

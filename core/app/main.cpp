@@ -24,8 +24,12 @@ void printUsage(std::FILE* stream) {
         "                 print the evaluated model of every scenario as JSON\n"
         "  doc [KIND] [--markdown] [--update FILE]\n"
         "                 the language reference from the schema registry\n"
+        "  plant build (IN | --synthetic LEAVES) -o OUT.plod [--threads N]\n"
+        "                 build the ellipsoid/line LoD of a plant\n"
+        "  plant info FILE.plod\n"
+        "                 print the levels, primitive counts, errors and bytes of a .plod\n"
         "  bench SUITE [--json]\n"
-        "                 run a benchmark suite (dsl, terrain)\n"
+        "                 run a benchmark suite (dsl, terrain, plantlod)\n"
         "\n"
         "environment:\n"
         "  SYLVA_GL=egl|osmesa|glfw   OpenGL back end (default: EGL, falling back to OSMesa)\n"
@@ -56,6 +60,19 @@ int main(int argc, char** argv) {
     }
     if (command == "doc") {
         return sylva::app::runDoc(arguments);
+    }
+    if (command == "plant") {
+        // Plant sub-commands (the integrator merges `generate` into this table).
+        const std::string sub = arguments.empty() ? "" : arguments[0];
+        const std::vector<std::string> rest(arguments.begin() + (arguments.empty() ? 0 : 1), arguments.end());
+        if (sub == "build") {
+            return sylva::app::runPlantBuild(rest);
+        }
+        if (sub == "info") {
+            return sylva::app::runPlantInfo(rest);
+        }
+        std::fprintf(stderr, "sylva: plant needs a sub-command: build, info\n");
+        return 2;
     }
     if (command == "bench") {
         return sylva::app::runBench(arguments);
