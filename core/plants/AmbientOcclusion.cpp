@@ -525,74 +525,16 @@ double sourceMeshAmbientOcclusion(const PlantModel& model, const AmbientOcclusio
 
 void computeAmbientOcclusion(const PlantModel& model, PlantLod& lod,
                              const AmbientOcclusionOptions& options) {
-    TraceScene scene;
-    scene.ellipsoids = lod.ellipsoids;
-    scene.lines = lod.lines;
-    for (std::size_t i = 0; i < lod.ellipsoids.size(); ++i) {
-        const LodEllipsoid& e = lod.ellipsoids[i];
-        scene.items.push_back({ItemKind::Ellipsoid, static_cast<std::uint32_t>(i), ellipsoidBox(e),
-                               e.errorMinimum, e.errorMaximum});
+    // One scene per ellipsoid level: its ellipsoids and the lines whose interval meets
+    // the level's. The error filter still decides visibility exactly; the split only
+    // keeps coarse levels' huge ellipsoids out of the fine levels' hierarchy.
+    std::vector<std::pair<float, float>> ranges;
+    for (const PlantLodLevel& level : lod.levels) {
+        ranges.emplace_back(level.errorMinimum, level.errorMaximum);
     }
-    for (std::size_t i = 0; i < lod.lines.size(); ++i) {
-        const LodLine& l = lod.lines[i];
-        scene.items.push_back({ItemKind::Line, static_cast<std::uint32_t>(i), lineBox(l),
-                               l.errorMinimum, l.errorMaximum});
+    if (ranges.empty()) {
+        ranges.emplace_back(0.0f, kInfinity);
     }
-    const std::uint32_t lineBase = static_cast<std::uint32_t>(lod.ellipsoids.size());
-    scene.build();
-
-    const int total = static_cast<int>(lod.ellipsoids.size() + lod.lines.size());
-    std::vector<float> values(total, 1.0f);
-    runOnThreads(total, options.threads, [&](int i) {
-        std::mt19937_64 random(options.seed * 0xD1B54A32D192ED03ull +
-                               static_cast<std::uint64_t>(i));
-        const bool isEllipsoid = i < static_cast<int>(lineBase);
-        const float error =
-            isEllipsoid ? lod.ellipsoids[i].errorMinimum : lod.lines[i - lineBase].errorMinimum;
-        double sum = 0.0;
-        int count = 0;
-        for (int s = 0; s < options.samples * 2 && count < options.samples; ++s) {
-            glm::vec3 p, n;
-            if (isEllipsoid) {
-                const LodEllipsoid& e = lod.ellipsoids[i];
-                const glm::vec3 q = randomUnit(random);
-                p = e.center;
-                n = glm::vec3(0.0f);
-                for (int k = 0; k < 3; ++k) {
-                    p += e.axes[k] * (e.radii[k] * q[k]);
-                    n += e.axes[k] * (q[k] / std::max(e.radii[k], 1e-6f));
-                }
-                n = glm::normalize(n);
-            } else {
-                const LodLine& l = lod.lines[i - lineBase];
-                std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-                const float t = unit(random);
-                const glm::vec3 axis = l.end - l.start;
-                const glm::vec3 around = randomUnit(random);
-                glm::vec3 radial =
-                    around - glm::dot(around, axis) / std::max(glm::dot(axis, axis), 1e-20f) * axis;
-                if (glm::dot(radial, radial) < 1e-12f) {
-                    continue;
-                }
-                n = glm::normalize(radial);
-                p = l.start + t * axis + n * (l.startRadius + t * (l.endRadius - l.startRadius));
-            }
-            if (scene.inside(p, error, static_cast<std::uint32_t>(i))) {
-                continue;  // hidden inside another primitive of the same LoD
-            }
-            sum += incoming(scene, p, n, error, options.bounces, random);
-            ++count;
-        }
-        values[i] = count > 0 ? static_cast<float>(sum / count) : 0.0f;
-    });
-    for (std::size_t i = 0; i < lod.ellipsoids.size(); ++i) {
-        lod.ellipsoids[i].ambientOcclusion = values[i];
-    }
-    for (std::size_t i = 0; i < lod.lines.size(); ++i) {
-        lod.lines[i].ambientOcclusion = values[lineBase + i];
-    }
-
-    // Calibration (§6.5.3): per ellipsoid level against the source mesh.
     const Box bounds = sceneBounds(model);
     const TraceScene source = sourceScene(model, false);
     const double target =
@@ -604,37 +546,119 @@ void computeAmbientOcclusion(const PlantModel& model, PlantLod& lod,
                            }
                            return s / 4.0;
                        });
-    std::vector<float> levelErrors;
-    for (const PlantLodLevel& level : lod.levels) {
-        levelErrors.push_back(level.errorMinimum);
-    }
-    if (levelErrors.empty()) {
-        std::vector<float> seen;
-        for (const LodEllipsoid& e : lod.ellipsoids) {
-            if (std::find(seen.begin(), seen.end(), e.errorMinimum) == seen.end()) {
-                seen.push_back(e.errorMinimum);
+    for (std::size_t k = 0; k < ranges.size(); ++k) {
+        const auto [low, high] = ranges[k];
+        TraceScene scene;
+        std::vector<std::size_t> ellipsoidIds, lineIds;  // global indices of the scene's items
+        for (std::size_t i = 0; i < lod.ellipsoids.size(); ++i) {
+            const LodEllipsoid& e = lod.ellipsoids[i];
+            if (e.errorMinimum < high && low < e.errorMaximum) {
+                scene.items.push_back({ItemKind::Ellipsoid,
+                                       static_cast<std::uint32_t>(scene.ellipsoids.size()),
+                                       ellipsoidBox(e), e.errorMinimum, e.errorMaximum});
+                scene.ellipsoids.push_back(e);
+                ellipsoidIds.push_back(i);
             }
         }
-        levelErrors = seen;
-    }
-    for (std::size_t k = 0; k < levelErrors.size(); ++k) {
-        const float error = levelErrors[k];
-        // The mean term of what the rays see at this error.
+        const std::size_t lineBase = scene.items.size();
+        for (std::size_t i = 0; i < lod.lines.size(); ++i) {
+            const LodLine& l = lod.lines[i];
+            if (l.errorMinimum < high && low < l.errorMaximum) {
+                scene.items.push_back({ItemKind::Line,
+                                       static_cast<std::uint32_t>(scene.lines.size()), lineBox(l),
+                                       l.errorMinimum, l.errorMaximum});
+                scene.lines.push_back(l);
+                lineIds.push_back(i);
+            }
+        }
+        scene.build();
+        // Primitives computed in this scene: ellipsoids starting in the level, lines
+        // whose own error falls in it (each primitive exactly once).
+        std::vector<std::uint32_t> work;
+        for (std::size_t item = 0; item < scene.items.size(); ++item) {
+            const float own = item < lineBase
+                                  ? scene.ellipsoids[scene.items[item].index].errorMinimum
+                                  : scene.lines[scene.items[item].index].errorMinimum;
+            if (low <= own && own < high) {
+                work.push_back(static_cast<std::uint32_t>(item));
+            }
+        }
+        std::vector<float> values(work.size(), 1.0f);
+        runOnThreads(static_cast<int>(work.size()), options.threads, [&](int w) {
+            const std::uint32_t item = work[w];
+            const bool isEllipsoid = item < lineBase;
+            const std::size_t global =
+                isEllipsoid ? ellipsoidIds[scene.items[item].index]
+                            : lineIds[scene.items[item].index] + lod.ellipsoids.size();
+            std::mt19937_64 random(options.seed * 0xD1B54A32D192ED03ull +
+                                   static_cast<std::uint64_t>(global));
+            const float error = isEllipsoid ? scene.ellipsoids[scene.items[item].index].errorMinimum
+                                            : scene.lines[scene.items[item].index].errorMinimum;
+            double sum = 0.0;
+            int count = 0;
+            for (int s = 0; s < options.samples * 2 && count < options.samples; ++s) {
+                glm::vec3 p, n;
+                if (isEllipsoid) {
+                    const LodEllipsoid& e = scene.ellipsoids[scene.items[item].index];
+                    const glm::vec3 q = randomUnit(random);
+                    p = e.center;
+                    n = glm::vec3(0.0f);
+                    for (int a = 0; a < 3; ++a) {
+                        p += e.axes[a] * (e.radii[a] * q[a]);
+                        n += e.axes[a] * (q[a] / std::max(e.radii[a], 1e-6f));
+                    }
+                    n = glm::normalize(n);
+                } else {
+                    const LodLine& l = scene.lines[scene.items[item].index];
+                    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+                    const float t = unit(random);
+                    const glm::vec3 axis = l.end - l.start;
+                    const glm::vec3 around = randomUnit(random);
+                    const glm::vec3 radial = around - glm::dot(around, axis) /
+                                                          std::max(glm::dot(axis, axis), 1e-20f) *
+                                                          axis;
+                    if (glm::dot(radial, radial) < 1e-12f) {
+                        continue;
+                    }
+                    n = glm::normalize(radial);
+                    p = l.start + t * axis +
+                        n * (l.startRadius + t * (l.endRadius - l.startRadius));
+                }
+                if (scene.inside(p, error, item)) {
+                    continue;  // hidden inside another primitive of the same LoD
+                }
+                sum += incoming(scene, p, n, error, options.bounces, random);
+                ++count;
+            }
+            values[w] = count > 0 ? static_cast<float>(sum / count) : 0.0f;
+        });
+        for (std::size_t w = 0; w < work.size(); ++w) {
+            const Item& item = scene.items[work[w]];
+            if (work[w] < lineBase) {
+                lod.ellipsoids[ellipsoidIds[item.index]].ambientOcclusion = values[w];
+                scene.ellipsoids[item.index].ambientOcclusion = values[w];
+            } else {
+                lod.lines[lineIds[item.index]].ambientOcclusion = values[w];
+                scene.lines[item.index].ambientOcclusion = values[w];
+            }
+        }
+        // Calibration (§6.5.3): the mean term the outside rays see at the level's error
+        // against the source mesh's; the level's ellipsoids are scaled to match.
         const double seen = outsideAverage(
-            scene, bounds, error, options, 100 + k,
+            scene, bounds, low, options, 100 + k,
             [&](const Hit& hit, const glm::vec3&, std::mt19937_64&) {
                 const Item& item = scene.items[hit.item];
                 return static_cast<double>(item.kind == ItemKind::Ellipsoid
-                                               ? lod.ellipsoids[item.index].ambientOcclusion
-                                               : lod.lines[item.index].ambientOcclusion);
+                                               ? scene.ellipsoids[item.index].ambientOcclusion
+                                               : scene.lines[item.index].ambientOcclusion);
             });
-        if (seen <= 0.0) {
-            continue;
-        }
-        const float factor = static_cast<float>(target / seen);
-        for (LodEllipsoid& e : lod.ellipsoids) {
-            if (e.errorMinimum == error) {
-                e.ambientOcclusion = std::clamp(e.ambientOcclusion * factor, 0.0f, 1.0f);
+        if (seen > 0.0) {
+            const float factor = static_cast<float>(target / seen);
+            for (std::size_t w = 0; w < work.size(); ++w) {
+                if (work[w] < lineBase) {
+                    LodEllipsoid& e = lod.ellipsoids[ellipsoidIds[scene.items[work[w]].index]];
+                    e.ambientOcclusion = std::clamp(e.ambientOcclusion * factor, 0.0f, 1.0f);
+                }
             }
         }
     }

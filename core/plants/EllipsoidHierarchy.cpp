@@ -399,13 +399,13 @@ std::vector<EllipsoidLevel> buildEllipsoidHierarchy(
         // removes (§3.4.1).
         level.imageError = std::numeric_limits<double>::infinity();
         // Thresholds up to 0.9: sparse crowns are mostly holes at coarse levels.
-        for (float threshold : {0.0f, 0.5f, 0.7f, 0.8f, 0.9f}) {
+        for (float threshold : {0.0f, 0.5f, 0.75f, 0.9f}) {
             const auto [scale, error] = calibrateScale(
                 [&](float s) {
                     return ellipsoidImageError(rasterizer, level.ellipsoids, reference,
                                                {s, threshold}, threads);
                 },
-                0.5f * previousScale, 3.0f * previousScale, 6);
+                0.5f * previousScale, 3.0f * previousScale, 5);
             if (error < level.imageError) {
                 level.imageError = error;
                 level.primitiveScale = scale;

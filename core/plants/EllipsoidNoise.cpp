@@ -32,7 +32,10 @@ std::uint32_t ellipsoidNoiseSeed(const glm::vec3& center) {
 }
 
 float ellipsoidNoise(const glm::vec3& q, float noiseLevel, std::uint32_t seed) {
-    const float cells = std::exp2(noiseLevel);
+    return ellipsoidNoiseCells(q, std::exp2(noiseLevel), seed);
+}
+
+float ellipsoidNoiseCells(const glm::vec3& q, float cells, std::uint32_t seed) {
     const auto cell = [&](float c) {
         return static_cast<std::uint32_t>(
             static_cast<std::int32_t>(std::floor((c * 0.5f + 0.5f) * cells)) + 4096);

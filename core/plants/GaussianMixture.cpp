@@ -128,6 +128,8 @@ GaussianMixtureFit fitGaussianMixture(std::span<const glm::dvec3> points,
     std::vector<Density> densities(k);
     std::vector<glm::dvec3> means(k);
     MeanTree tree;
+    constexpr int kNeighbourRefresh = 4;
+    std::vector<int> candidates(truncated ? static_cast<std::size_t>(n) * neighbours : 0, -1);
     std::vector<std::pair<double, int>> nearest;
     std::vector<double> logDensity;
     fit.offsets.assign(n + 1, 0);
@@ -153,7 +155,11 @@ GaussianMixtureFit fitGaussianMixture(std::span<const glm::dvec3> points,
             alive.push_back(j);
         }
         SYLVA_CHECK(!alive.empty());
-        if (truncated) {
+        // The candidate clusters of each point are re-searched every
+        // kNeighbourRefresh iterations: means move little between iterations, and the
+        // search dominates the cost otherwise.
+        const bool refresh = truncated && iteration % kNeighbourRefresh == 0;
+        if (refresh) {
             tree.build(means, alive);
         }
         fit.cluster.clear();
@@ -162,9 +168,26 @@ GaussianMixtureFit fitGaussianMixture(std::span<const glm::dvec3> points,
         for (int i = 0; i < n; ++i) {
             const glm::dvec3& x = points[i];
             if (truncated) {
-                tree.nearest(x, neighbours, nearest);
-                std::sort(nearest.begin(), nearest.end(),
-                          [](const auto& a, const auto& b) { return a.second < b.second; });
+                int* own = &candidates[static_cast<std::size_t>(i) * neighbours];
+                if (refresh) {
+                    tree.nearest(x, neighbours, nearest);
+                    std::sort(nearest.begin(), nearest.end(),
+                              [](const auto& a, const auto& b) { return a.second < b.second; });
+                    for (int m = 0; m < neighbours; ++m) {
+                        own[m] = m < static_cast<int>(nearest.size()) ? nearest[m].second : -1;
+                    }
+                }
+                nearest.clear();
+                for (int m = 0; m < neighbours; ++m) {
+                    if (own[m] >= 0 && fit.components[own[m]].mixingWeight > 0.0) {
+                        nearest.emplace_back(0.0, own[m]);
+                    }
+                }
+                if (nearest.empty()) {  // every candidate died since the last search
+                    for (int j : alive) {
+                        nearest.emplace_back(0.0, j);
+                    }
+                }
             } else {
                 nearest.clear();
                 for (int j : alive) {

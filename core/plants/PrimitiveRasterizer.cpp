@@ -134,6 +134,7 @@ void PrimitiveRasterizer::drawEllipsoids(std::span<const LodEllipsoid> ellipsoid
         const float threshold =
             style.alphaThreshold >= 0.0f ? style.alphaThreshold : e.alphaThreshold;
         const std::uint32_t seed = ellipsoidNoiseSeed(e.center);
+        const float cells = std::exp2(e.noiseLevel);
         const float value = luminance(e.color);
         const int x0 =
             std::max(f.x0, static_cast<int>(std::floor((c.x - halfU + radius_) / pixel - 0.5f)));
@@ -159,11 +160,10 @@ void PrimitiveRasterizer::drawEllipsoids(std::span<const LodEllipsoid> ellipsoid
                 if (c.z + s >= frame.depth[at]) {
                     continue;
                 }
-                if (threshold > 0.0f &&
-                    ellipsoidNoise(p0 + s * g, e.noiseLevel, seed) < threshold) {
+                if (threshold > 0.0f && ellipsoidNoiseCells(p0 + s * g, cells, seed) < threshold) {
                     s = (-pg + root) / gg;  // perforated front: try the back
                     if (c.z + s >= frame.depth[at] ||
-                        ellipsoidNoise(p0 + s * g, e.noiseLevel, seed) < threshold) {
+                        ellipsoidNoiseCells(p0 + s * g, cells, seed) < threshold) {
                         continue;
                     }
                 }

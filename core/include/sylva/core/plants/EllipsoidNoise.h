@@ -27,5 +27,7 @@ std::uint32_t ellipsoidNoiseSeed(const glm::vec3& center);
 
 // Noise value in [0, 1) at unit-sphere point `q` for the given mip level and seed.
 float ellipsoidNoise(const glm::vec3& q, float noiseLevel, std::uint32_t seed);
+// The same with cells = exp2(noiseLevel) computed once per ellipsoid.
+float ellipsoidNoiseCells(const glm::vec3& q, float cells, std::uint32_t seed);
 
 }  // namespace sylva

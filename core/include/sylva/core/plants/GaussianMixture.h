@@ -9,7 +9,9 @@
 // cluster means (a k-d tree rebuilt every iteration); the responsibilities of farther
 // clusters are below e^-20 of the nearest ones for the cluster spacings a hierarchy
 // level produces, so the truncation changes the result negligibly while one iteration
-// drops from O(N·K) to O(N log K). Exact EM remains available (neighbourCount = 0).
+// drops from O(N·K) to O(N log K). The neighbour lists are re-searched every fourth
+// iteration only (means move little between iterations). Exact EM remains available
+// (neighbourCount = 0).
 //
 // Deterministic: the same inputs give the same outputs (no threads inside).
 #pragma once
@@ -24,8 +26,8 @@ namespace sylva {
 
 struct GaussianMixtureOptions {
     int maximumIterations = 60;
-    double tolerance = 1e-6;  // relative change of the log-likelihood that ends EM
-    int neighbourCount = 12;  // 0: every point against every cluster
+    double tolerance = 1e-5;  // relative change of the log-likelihood that ends EM
+    int neighbourCount = 8;   // 0: every point against every cluster
     // Added to every covariance diagonal, m² (keeps clusters of one or two coplanar
     // points invertible).
     double varianceFloor = 1e-8;
