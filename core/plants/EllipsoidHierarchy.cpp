@@ -275,6 +275,9 @@ void bake(std::vector<LodEllipsoid>& ellipsoids, float scale, float threshold,
           std::uint32_t level) {
     for (LodEllipsoid& e : ellipsoids) {
         e.radii *= scale;
+        // Flat leaves have a third radius near 0; the stored radii carry the same floor
+        // the rasterizer applies, so a shader needs no rule of its own.
+        e.radii = glm::max(e.radii, glm::vec3(1e-3f * std::max({e.radii.x, e.radii.y, e.radii.z})));
         e.alphaThreshold = threshold;
         e.level = level;
     }
@@ -398,8 +401,7 @@ std::vector<EllipsoidLevel> buildEllipsoidHierarchy(
         // Calibrate the shared alpha threshold and the scale that compensates the area it
         // removes (§3.4.1).
         level.imageError = std::numeric_limits<double>::infinity();
-        // Thresholds up to 0.9: sparse crowns are mostly holes at coarse levels.
-        for (float threshold : {0.0f, 0.5f, 0.75f, 0.9f}) {
+        const auto tryThreshold = [&](float threshold) {
             const auto [scale, error] = calibrateScale(
                 [&](float s) {
                     return ellipsoidImageError(rasterizer, level.ellipsoids, reference,
@@ -410,6 +412,17 @@ std::vector<EllipsoidLevel> buildEllipsoidHierarchy(
                 level.imageError = error;
                 level.primitiveScale = scale;
                 level.alphaThreshold = threshold;
+            }
+        };
+        // A coarse grid of thresholds (up to 0.9: sparse crowns are mostly holes at
+        // coarse levels), then the neighbours of the best one.
+        for (float threshold : {0.0f, 0.5f, 0.75f, 0.9f}) {
+            tryThreshold(threshold);
+        }
+        const float bestThreshold = level.alphaThreshold;
+        for (float threshold : {bestThreshold - 0.1f, bestThreshold + 0.05f}) {
+            if (threshold > 0.0f && threshold < 0.97f) {
+                tryThreshold(threshold);
             }
         }
         bake(level.ellipsoids, level.primitiveScale, level.alphaThreshold,
