@@ -95,7 +95,8 @@ public:
         bar.append(static_cast<std::size_t>(width - filled), ' ');
         std::string detail;
         if (p.levelCount > 0) {
-            detail += " level " + std::to_string(p.level) + "/" + std::to_string(p.levelCount);
+            detail += (p.stage == "lines" ? " merge " : " level ") + std::to_string(p.level) + "/" +
+                      std::to_string(p.levelCount);
         }
         if (p.restartCount > 0) {
             detail +=
