@@ -245,7 +245,8 @@ double ellipsoidImageError(const PrimitiveRasterizer& rasterizer,
     const int views = rasterizer.viewCount();
     std::vector<std::vector<double>> perView(views);
     runOnThreads(views, threads, [&](int view) {
-        RasterFrame frame = rasterizer.blankFrame();
+        thread_local RasterFrame frame;
+        rasterizer.clearFrame(frame);
         rasterizer.drawEllipsoids(ellipsoids, view, frame, style);
         perView[view] = multiScaleSquaredErrors(rasterizer.resolve(frame), reference[view],
                                                 rasterizer.resolution());

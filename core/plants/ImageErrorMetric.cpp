@@ -34,21 +34,30 @@ std::vector<double> multiScaleSquaredErrors(std::span<const float> sample,
                 sample.size() == static_cast<std::size_t>(size) * size);
     std::vector<double> partial(levels + 1, 0.0);
     std::vector<double> squared(levels, 0.0);
+    std::vector<double> inverseBlockPixels(levels);
+    for (int k = 0; k < levels; ++k) {
+        inverseBlockPixels[k] = std::ldexp(1.0, -2 * k);  // exact: powers of two
+    }
     const std::uint32_t pixels =
         static_cast<std::uint32_t>(size) * static_cast<std::uint32_t>(size);
+    // The Z-curve order of this size, computed once per thread.
+    thread_local std::vector<std::uint32_t> order;
+    if (order.size() != pixels) {
+        order.resize(pixels);
+        for (std::uint32_t i = 0; i < pixels; ++i) {
+            order[i] = compactBits(i >> 1) * static_cast<std::uint32_t>(size) + compactBits(i);
+        }
+    }
     for (std::uint32_t i = 0; i < pixels; ++i) {
-        const std::uint32_t x = compactBits(i);
-        const std::uint32_t y = compactBits(i >> 1);
-        const std::size_t at = static_cast<std::size_t>(y) * size + x;
+        const std::size_t at = order[i];
         partial[0] = static_cast<double>(sample[at]) - static_cast<double>(reference[at]);
         // A block of level k ends where the low 2k bits of i + 1 wrap to zero.
         std::uint32_t next = i + 1;
         for (int k = 0; k < levels; ++k) {
-            const double blockPixels = std::ldexp(1.0, 2 * k);
             if (k > 0 && (next & ((1u << (2 * k)) - 1u)) != 0) {
                 break;
             }
-            const double mean = partial[k] / blockPixels;
+            const double mean = partial[k] * inverseBlockPixels[k];
             squared[k] += mean * mean;
             partial[k + 1] += partial[k];
             partial[k] = 0.0;

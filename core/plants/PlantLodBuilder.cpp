@@ -49,7 +49,8 @@ double imageError(const PrimitiveRasterizer& rasterizer, std::span<const LodElli
     const int views = rasterizer.viewCount();
     std::vector<std::vector<double>> perView(views);
     runOnThreads(views, threads, [&](int view) {
-        RasterFrame frame = rasterizer.blankFrame();
+        thread_local RasterFrame frame;
+        rasterizer.clearFrame(frame);
         rasterizer.drawEllipsoids(ellipsoids, view, frame);
         rasterizer.drawLines(lines, view, frame, lineScale);
         perView[view] = multiScaleSquaredErrors(rasterizer.resolve(frame), reference[view],

@@ -174,6 +174,13 @@ void PrimitiveRasterizer::drawEllipsoids(std::span<const LodEllipsoid> ellipsoid
     }
 }
 
+void PrimitiveRasterizer::clearFrame(RasterFrame& frame) const {
+    frame.rect = fullRect();
+    const std::size_t pixels = static_cast<std::size_t>(renderSize()) * renderSize();
+    frame.value.assign(pixels, 0.0f);
+    frame.depth.assign(pixels, kInfinity);
+}
+
 PixelRect PrimitiveRasterizer::lineBounds(const LodLine& line, int view, float widthScale) const {
     const float pixel = renderPixelSize();
     const glm::vec3 p = toView(line.start, view);

@@ -65,6 +65,9 @@ public:
 
     RasterFrame blankFrame() const { return blankFrame(fullRect()); }
     RasterFrame blankFrame(const PixelRect& rect) const;
+    // Makes `frame` a blank full frame, reusing its storage (calibration renders
+    // thousands of frames; allocating them dominated the cost).
+    void clearFrame(RasterFrame& frame) const;
     PixelRect fullRect() const { return {0, 0, renderSize(), renderSize()}; }
 
     void drawEllipsoids(std::span<const LodEllipsoid> ellipsoids, int view, RasterFrame& frame,
