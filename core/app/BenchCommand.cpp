@@ -18,15 +18,15 @@
 #include "Commands.h"
 #include "ProjectSession.h"
 #include "sylva/core/geo/Geodesy.h"
+#include "sylva/core/plants/BillboardCloudBuilder.h"
+#include "sylva/core/plants/PlantGenerator.h"
+#include "sylva/core/plants/PlantGltfWriter.h"
+#include "sylva/core/plants/PlantImporter.h"
 #include "sylva/core/sources/ConstantSource.h"
 #include "sylva/core/sources/MaskSource.h"
 #include "sylva/core/sources/PlantsSource.h"
 #include "sylva/core/sources/RasterizeSource.h"
 #include "sylva/core/tiles/TileEvaluator.h"
-#include "sylva/core/plants/BillboardCloudBuilder.h"
-#include "sylva/core/plants/PlantGenerator.h"
-#include "sylva/core/plants/PlantGltfWriter.h"
-#include "sylva/core/plants/PlantImporter.h"
 #include "sylva/dsl/ProjectLoader.h"
 
 #include <cmath>
@@ -130,10 +130,12 @@ std::vector<TileKey> benchTiles(int level) {
     TileKey probe;
     probe.level = level;
     auto column = [&](double lon) {
-        return int(std::floor((lon * kDegree + std::numbers::pi) / (2 * std::numbers::pi) * probe.columns()));
+        return int(std::floor((lon * kDegree + std::numbers::pi) / (2 * std::numbers::pi) *
+                              probe.columns()));
     };
     auto row = [&](double lat) {
-        return int(std::floor((std::numbers::pi / 2 - lat * kDegree) / std::numbers::pi * probe.rows()));
+        return int(
+            std::floor((std::numbers::pi / 2 - lat * kDegree) / std::numbers::pi * probe.rows()));
     };
     for (int y = row(-7.75); y <= row(-8.25); ++y) {
         for (int x = column(-35.25); x <= column(-34.75); ++x) {
@@ -150,21 +152,27 @@ int benchVector(std::vector<Metric>& metrics) {
     constexpr double kDegree = std::numbers::pi / 180.0;
     // 300 polygons (64-gons, 0.2-2 km radius) in a GeoJSON file.
     std::mt19937 random(5);
-    std::uniform_real_distribution<double> lon(-35.25, -34.75), lat(-8.25, -7.75), radius(200.0, 2000.0);
+    std::uniform_real_distribution<double> lon(-35.25, -34.75), lat(-8.25, -7.75),
+        radius(200.0, 2000.0);
     std::string text = R"({"type":"FeatureCollection","features":[)";
     for (int i = 0; i < 300; ++i) {
         const double cLat = lat(random) * kDegree, cLon = lon(random) * kDegree, r = radius(random);
-        append(text, {i ? "," : "", R"({"type":"Feature","properties":{},"geometry":{"type":"Polygon","coordinates":[[)"});
+        append(
+            text,
+            {i ? "," : "",
+             R"({"type":"Feature","properties":{},"geometry":{"type":"Polygon","coordinates":[[)"});
         for (int k = 0; k <= 64; ++k) {
             double pLat = 0.0, pLon = 0.0;
             Geodesy::destination(cLat, cLon, 2 * std::numbers::pi * (k % 64) / 64, r, pLat, pLon);
-            const std::string x = std::to_string(pLon / kDegree), y = std::to_string(pLat / kDegree);
+            const std::string x = std::to_string(pLon / kDegree),
+                              y = std::to_string(pLat / kDegree);
             append(text, {k ? "," : "", "[", x, ",", y, "]"});
         }
         append(text, {"]]}}"});
     }
     append(text, {"]}"});
-    const std::filesystem::path file = std::filesystem::temp_directory_path() / "sylva-bench-vector.geojson";
+    const std::filesystem::path file =
+        std::filesystem::temp_directory_path() / "sylva-bench-vector.geojson";
     std::ofstream(file) << text;
     FeatureSource features("polygons", file, {});
     RasterizeParameters parameters;
@@ -176,21 +184,24 @@ int benchVector(std::vector<Metric>& metrics) {
     auto rate = [](const std::function<int()>& pass, double& perSecond) {
         const auto start = std::chrono::steady_clock::now();
         const int count = pass();
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         perSecond = count / seconds;
         return count;
     };
     double rasterizeRate = 0.0;
-    rate([&] {
-        TileEvaluator evaluator(TileFormat{256, 2});
-        int count = 0;
-        for (int level = 11; level <= 13; ++level) {
-            for (const TileKey& key : benchTiles(level)) {
-                count += evaluator.tile(rasterize, key) ? 1 : 0;
+    rate(
+        [&] {
+            TileEvaluator evaluator(TileFormat{256, 2});
+            int count = 0;
+            for (int level = 11; level <= 13; ++level) {
+                for (const TileKey& key : benchTiles(level)) {
+                    count += evaluator.tile(rasterize, key) ? 1 : 0;
+                }
             }
-        }
-        return count;
-    }, rasterizeRate);
+            return count;
+        },
+        rasterizeRate);
     metrics.push_back({"rasterize_tiles_per_s", rasterizeRate});
 
     const ConstantSource ground("ground", 20.0);
@@ -210,21 +221,24 @@ int benchVector(std::vector<Metric>& metrics) {
     }
     double plantsRate = 0.0;
     std::size_t instances = 0;
-    const int tiles = rate([&] {
-        TileEvaluator evaluator(TileFormat{256, 2});
-        int count = 0;
-        for (const TileKey& key : benchTiles(14)) {
-            if (count == 32) {
-                break;
+    const int tiles = rate(
+        [&] {
+            TileEvaluator evaluator(TileFormat{256, 2});
+            int count = 0;
+            for (const TileKey& key : benchTiles(14)) {
+                if (count == 32) {
+                    break;
+                }
+                Result<std::shared_ptr<const InstanceTile>> tile =
+                    plants.value()->instances(key, evaluator);
+                if (tile) {
+                    instances += tile.value()->instances.size();
+                    ++count;
+                }
             }
-            Result<std::shared_ptr<const InstanceTile>> tile = plants.value()->instances(key, evaluator);
-            if (tile) {
-                instances += tile.value()->instances.size();
-                ++count;
-            }
-        }
-        return count;
-    }, plantsRate);
+            return count;
+        },
+        plantsRate);
     metrics.push_back({"plants_tiles_per_s_level14", plantsRate});
     metrics.push_back({"plants_instances_per_tile", tiles ? double(instances) / tiles : 0.0});
     return 0;
@@ -322,6 +336,9 @@ int runBench(const std::vector<std::string>& arguments) {
     if (!arguments.empty() && arguments[0] == "tiles") {
         return runTilesBench(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
     }
+    if (!arguments.empty() && arguments[0] == "plantlod") {
+        return runPlantLodBench(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
+    }
     const ParsedCommandLine command =
         parseCommandLine(arguments, {{"help", false}, {"json", false}});
     std::string names;
@@ -329,11 +346,14 @@ int runBench(const std::vector<std::string>& arguments) {
         append(names, {names.empty() ? "" : ", ", suite.name});
     }
     if (command.has("help")) {
-        std::printf("usage: sylva bench SUITE [--json]\nsuites: %s, terrain, tiles\n", names.c_str());
+        std::printf("usage: sylva bench SUITE [--json]\nsuites: %s, terrain, tiles, plantlod\n",
+                    names.c_str());
         return 0;
     }
     if (!command.error.empty() || command.positional.size() != 1) {
-        reportError(command.error.empty() ? "bench needs one suite: " + names + ", terrain, tiles" : command.error);
+        reportError(command.error.empty()
+                        ? "bench needs one suite: " + names + ", terrain, tiles, plantlod"
+                        : command.error);
         return 2;
     }
     for (const Suite& suite : kSuites) {

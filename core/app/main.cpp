@@ -35,10 +35,13 @@ void printUsage(std::FILE* stream) {
         "                 a procedural tree (oak, conifer, birch, bush) as glTF\n"
         "  plant montage [--seed N] [--leaves N] [--size WxH] [--billboards] -o IMAGE.png\n"
         "                 the presets side by side (software rasterizer)\n"
-        "  plant info MODEL\n"
-        "                 import a plant model (.gltf, .glb, .obj) and summarise it\n"
+        "  plant build (IN | --synthetic LEAVES) -o OUT.plod [--threads N]\n"
+        "                 build the ellipsoid/line LoD of a plant\n"
+        "  plant info FILE\n"
+        "                 a .plod: levels, primitive counts, errors and bytes; a model\n"
+        "                 (.gltf, .glb, .obj): import it and summarise it\n"
         "  bench SUITE [--json]\n"
-        "                 run a benchmark suite (dsl, terrain)\n"
+        "                 run a benchmark suite (dsl, terrain, plantlod)\n"
         "\n"
         "environment:\n"
         "  SYLVA_GL=egl|osmesa|glfw   OpenGL back end (default: EGL, falling back to OSMesa)\n"
@@ -82,6 +85,18 @@ int main(int argc, char** argv) {
         return sylva::app::runDoc(arguments);
     }
     if (command == "plant") {
+        // Plant sub-commands: LoD build and .plod info here, the rest (generate,
+        // montage, model info) in PlantCommand.cpp.
+        const std::string sub = arguments.empty() ? "" : arguments[0];
+        const std::vector<std::string> rest(arguments.begin() + (arguments.empty() ? 0 : 1),
+                                            arguments.end());
+        if (sub == "build") {
+            return sylva::app::runPlantBuild(rest);
+        }
+        if (sub == "info" && rest.size() == 1 && rest[0].size() > 5 &&
+            rest[0].compare(rest[0].size() - 5, 5, ".plod") == 0) {
+            return sylva::app::runPlantInfo(rest);
+        }
         return sylva::app::runPlant(arguments);
     }
     if (command == "bench") {

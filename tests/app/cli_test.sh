@@ -339,5 +339,31 @@ expect_rc 1
 expect_stderr "cannot read '$SCRATCH/nope.sylva': no such file"
 end
 
+begin "plant build --synthetic writes a .plod, plant info reads it"
+mkdir -p "$SCRATCH/plant"
+run plant build --synthetic 60 -o "$SCRATCH/plant/tree.plod" --threads 2 --ao-samples 4
+expect_rc 0
+expect_stdout "wrote $SCRATCH/plant/tree.plod:"
+[ -f "$SCRATCH/plant/tree.plod" ] || fail "no .plod written"
+[ -z "$(ls "$SCRATCH/plant" | grep tmp)" ] || fail "temporary file left behind"
+run plant info "$SCRATCH/plant/tree.plod"
+expect_rc 0
+expect_stdout "plant 'synthetic-60', .plod version 1"
+expect_stdout "ELLI"
+end
+
+begin "plant info on a truncated .plod -> exit 1"
+head -c 300 "$SCRATCH/plant/tree.plod" >"$SCRATCH/plant/cut.plod"
+run plant info "$SCRATCH/plant/cut.plod"
+expect_rc 1
+expect_stderr "$SCRATCH/plant/cut.plod: truncated or padded: the header says"
+end
+
+begin "plant build without -o -> exit 2"
+run plant build --synthetic 10
+expect_rc 2
+expect_stderr "plant build needs -o OUT.plod"
+end
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
