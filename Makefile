@@ -8,6 +8,8 @@
 #   SYLVA_WERROR  ON/OFF (default ON everywhere, so demo and test share one build)
 #   JOBS          parallel build jobs (default: nproc)
 #   CMAKE_ARGS    extra arguments for the CMake configure step
+#   TSAN_DIR      ThreadSanitizer build folder of `make test` (default: build-tsan)
+#   TSAN_TESTS    gtest filter run under ThreadSanitizer (the threaded tile code)
 
 BUILD_DIR    ?= build
 JOBS         ?= $(shell nproc 2>/dev/null || echo 2)
@@ -15,6 +17,8 @@ CMAKE_ARGS   ?=
 DEMO_PROJECT ?= projects/demo/demo.sylva
 DEMO_OUT     ?= out/demo
 SYLVA_BIN     = $(BUILD_DIR)/bin/sylva
+TSAN_DIR     ?= build-tsan
+TSAN_TESTS   ?= Scheduler.*:TileCache.*:TileEvaluator.*:Clipmap.*
 
 # An explicit SYLVA_WERROR (command line or environment) wins everywhere.
 ifdef SYLVA_WERROR
@@ -40,7 +44,7 @@ CTEST_SUMMARY_LAST = awk '/^[0-9]+% tests passed, [0-9]+ tests failed out of [0-
 # Steps run in the order written, even under make -j.
 .NOTPARALLEL:
 .DEFAULT_GOAL := help
-.PHONY: help setup samples build demo test goldens clean
+.PHONY: help setup samples build demo test tsan goldens clean
 
 # $(call cmake_build,WERROR): Release configure + build into $(BUILD_DIR) with Ninja.
 define cmake_build
@@ -56,8 +60,9 @@ help:
 	@echo "make setup    install the Debian packages (scripts/setup)"
 	@echo "make samples  fetch the sample data into data/ (scripts/fetch-samples)"
 	@echo "make build    Release build into $(BUILD_DIR)/ (SYLVA_WERROR=$(WERROR_BUILD))"
+	@echo "make tsan     build sylva_core_tests with ThreadSanitizer in $(TSAN_DIR), run the threaded tile tests"
 	@echo "make goldens  regenerate tests/render/goldens/*.png (review before committing)"
-	@echo "make clean    remove $(BUILD_DIR)/ and out/ (data/ is kept)"
+	@echo "make clean    remove $(BUILD_DIR)/, $(TSAN_DIR)/ and out/ (data/ is kept)"
 
 setup:
 	scripts/setup
@@ -78,11 +83,22 @@ demo:
 	@ls -1 $(DEMO_OUT)/*.png 2>/dev/null || { echo "make: no PNG was written to $(DEMO_OUT)" >&2; exit 1; }
 
 # ctest's summary line is the last thing printed; --no-tests=error makes an
-# empty suite fail instead of passing silently.
+# empty suite fail instead of passing silently. Then the scheduler and cache tests
+# (with the 10 s stress test) run again under ThreadSanitizer: only sylva_core_tests
+# is built in $(TSAN_DIR); any report fails the build (halt_on_error).
 test:
 	scripts/setup
 	$(call cmake_build,$(WERROR_TEST))
 	ctest --test-dir $(BUILD_DIR) --output-on-failure --no-tests=error -j2 2>&1 | $(CTEST_SUMMARY_LAST)
+	$(MAKE) --no-print-directory tsan
+
+tsan:
+	cmake -S . -B $(TSAN_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release -DSYLVA_WERROR=OFF \
+	  -DCMAKE_CXX_FLAGS=-fsanitize=thread -DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread \
+	  -DCMAKE_SHARED_LINKER_FLAGS=-fsanitize=thread $(CMAKE_ARGS)
+	cmake --build $(TSAN_DIR) -j$(JOBS) --target sylva_core_tests
+	TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" \
+	  $(TSAN_DIR)/tests/sylva_core_tests --gtest_filter='$(TSAN_TESTS)'
 
 # Rewrites the golden images from the current renderer; see tests/README.md.
 goldens:
@@ -92,4 +108,4 @@ goldens:
 	@git status --short -- tests/render/goldens 2>/dev/null || true
 
 clean:
-	rm -rf $(BUILD_DIR) out
+	rm -rf $(BUILD_DIR) $(TSAN_DIR) out

@@ -7,6 +7,7 @@
 
 #include "sylva/core/scene/BlockReader.h"
 #include "sylva/core/sources/NormalMapSource.h"
+#include "sylva/core/sources/RasterSource.h"
 #include "sylva/core/sources/SourceFactory.h"
 
 namespace sylva {
@@ -172,6 +173,11 @@ void collect(const Source& source, std::unordered_set<const Source*>& seen) {
             if (input != nullptr) {
                 collect(*input, seen);
             }
+        }
+        // A raster's coverage mask is not an input of anything (blend asks for it
+        // through BlendSource::coverageOf), but its tiles are live all the same.
+        if (const auto* raster = dynamic_cast<const RasterSource*>(&source); raster && raster->coverage()) {
+            collect(*raster->coverage(), seen);
         }
     }
 }

@@ -546,6 +546,11 @@ void Scheduler::setBudgetBytes(std::size_t bytes) {
     }
 }
 
+std::size_t Scheduler::budgetBytes() const {
+    std::lock_guard lock(mutex_);
+    return options_.budgetBytes;
+}
+
 std::size_t Scheduler::peakCachedBytes() const {
     std::lock_guard lock(mutex_);
     return peakBytes_;

@@ -101,6 +101,19 @@ expect_stderr "sylva: --gl: unknown GL back end 'bogus' (expected egl, osmesa or
 expect_no_png "$SCRATCH/glopt"
 end
 
+begin "--cache-mb 2x -> exit 2"
+run render "$PROJECTS/tiny.sylva" --cache-mb 2x --out "$SCRATCH/cache"
+expect_rc 2
+expect_stderr "sylva: --cache-mb expects a tile cache budget in MiB within 16..1048576, got '2x'"
+expect_no_png "$SCRATCH/cache"
+end
+
+begin "bench tiles without sample data -> exit 1 naming the file and scripts/fetch-samples"
+run bench tiles --data "$SCRATCH/no-data"
+expect_rc 1
+expect_stderr "no-data/olinda/olinda_dem_utm25s.tif' is missing; run scripts/fetch-samples"
+end
+
 # --- project errors (exit 1, located) ------------------------------------------
 
 begin "missing project file"

@@ -683,6 +683,16 @@ TEST(RasterSource, CreateResolvesPathsAgainstTheProjectFolder) {
     EXPECT_FALSE(raster->openError()) << raster->openError()->message;
     EXPECT_EQ(raster->output(), PortType::Elevation);
     EXPECT_EQ(graph->find("merged")->output(), PortType::Elevation);
+    // What a reload needs: the files to watch and every live content hash (inputs
+    // the graph does not name, such as the raster's coverage, included).
+    const std::vector<std::filesystem::path> files = graph->files();
+    ASSERT_EQ(files.size(), 1u);
+    EXPECT_EQ(files[0].filename(), "dem_utm25s.tif");
+    const std::unordered_set<std::uint64_t> hashes = graph->contentHashes();
+    for (const Source* source : {graph->find("dem"), graph->find("base"), graph->find("merged"), raster->coverage()}) {
+        ASSERT_NE(source, nullptr);
+        EXPECT_EQ(hashes.count(source->contentHash()), 1u) << source->name();
+    }
 
     // An image over an elevation is refused with the attribute's location.
     model.sources[1].attributes = {{"kind", valueOf(Word{"image"}), {}}};

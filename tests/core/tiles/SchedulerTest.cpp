@@ -10,6 +10,11 @@
 #include <random>
 #include <thread>
 
+#if defined(__linux__)
+#include <sys/resource.h>
+#include <unistd.h>
+#endif
+
 namespace sylva {
 namespace {
 
@@ -133,6 +138,30 @@ TEST(Scheduler, ConcurrentRequestsForOneTileProduceItOnce) {
     EXPECT_EQ(scheduler.totals().misses, 1u);
     EXPECT_GE(scheduler.totals().hits, 1u);
 }
+
+#if defined(__linux__)
+// Seed 001 §4.6: workers run below the render (here: the test) thread in OS priority.
+class NicenessSource final : public Source {
+public:
+    NicenessSource() : Source("niceness", "test", PortType::Elevation, 1) { setParameterHash(99); }
+    Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override {
+        niceness = getpriority(PRIO_PROCESS, static_cast<id_t>(gettid()));
+        return TilePointer(std::make_shared<ImageTile>(key, provider.format().size, 0, 1));
+    }
+    mutable std::atomic<int> niceness{-100};
+};
+
+TEST(Scheduler, WorkersRunBelowTheCallersPriority) {
+    NicenessSource source;
+    SchedulerOptions settings = options(1);
+    settings.workerNiceIncrement = 5;
+    Scheduler scheduler(settings);
+    const int caller = getpriority(PRIO_PROCESS, static_cast<id_t>(gettid()));
+    scheduler.request(source, TileKey{1, 0, 0, 0}, 0);
+    scheduler.waitIdle();
+    EXPECT_EQ(source.niceness.load(), std::min(19, caller + 5));
+}
+#endif
 
 TEST(Scheduler, OneWorkerRunsQueuedTasksInPriorityOrder) {
     TestSource blocker("blocker", 1);

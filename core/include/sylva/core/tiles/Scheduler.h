@@ -117,7 +117,7 @@ public:
 
     SchedulerStatistics totals() const;
     std::vector<SchedulerStatistics> statisticsPerSource() const;
-    std::size_t budgetBytes() const { return options_.budgetBytes; }
+    std::size_t budgetBytes() const;
     void setBudgetBytes(std::size_t bytes);
     std::size_t peakCachedBytes() const;
     std::size_t queuedTasks() const;
