@@ -122,10 +122,12 @@ std::vector<TileKey> benchTiles(int level) {
     TileKey probe;
     probe.level = level;
     auto column = [&](double lon) {
-        return int(std::floor((lon * kDegree + std::numbers::pi) / (2 * std::numbers::pi) * probe.columns()));
+        return int(std::floor((lon * kDegree + std::numbers::pi) / (2 * std::numbers::pi) *
+                              probe.columns()));
     };
     auto row = [&](double lat) {
-        return int(std::floor((std::numbers::pi / 2 - lat * kDegree) / std::numbers::pi * probe.rows()));
+        return int(
+            std::floor((std::numbers::pi / 2 - lat * kDegree) / std::numbers::pi * probe.rows()));
     };
     for (int y = row(-7.75); y <= row(-8.25); ++y) {
         for (int x = column(-35.25); x <= column(-34.75); ++x) {
@@ -142,21 +144,27 @@ int benchVector(std::vector<Metric>& metrics) {
     constexpr double kDegree = std::numbers::pi / 180.0;
     // 300 polygons (64-gons, 0.2-2 km radius) in a GeoJSON file.
     std::mt19937 random(5);
-    std::uniform_real_distribution<double> lon(-35.25, -34.75), lat(-8.25, -7.75), radius(200.0, 2000.0);
+    std::uniform_real_distribution<double> lon(-35.25, -34.75), lat(-8.25, -7.75),
+        radius(200.0, 2000.0);
     std::string text = R"({"type":"FeatureCollection","features":[)";
     for (int i = 0; i < 300; ++i) {
         const double cLat = lat(random) * kDegree, cLon = lon(random) * kDegree, r = radius(random);
-        append(text, {i ? "," : "", R"({"type":"Feature","properties":{},"geometry":{"type":"Polygon","coordinates":[[)"});
+        append(
+            text,
+            {i ? "," : "",
+             R"({"type":"Feature","properties":{},"geometry":{"type":"Polygon","coordinates":[[)"});
         for (int k = 0; k <= 64; ++k) {
             double pLat = 0.0, pLon = 0.0;
             Geodesy::destination(cLat, cLon, 2 * std::numbers::pi * (k % 64) / 64, r, pLat, pLon);
-            const std::string x = std::to_string(pLon / kDegree), y = std::to_string(pLat / kDegree);
+            const std::string x = std::to_string(pLon / kDegree),
+                              y = std::to_string(pLat / kDegree);
             append(text, {k ? "," : "", "[", x, ",", y, "]"});
         }
         append(text, {"]]}}"});
     }
     append(text, {"]}"});
-    const std::filesystem::path file = std::filesystem::temp_directory_path() / "sylva-bench-vector.geojson";
+    const std::filesystem::path file =
+        std::filesystem::temp_directory_path() / "sylva-bench-vector.geojson";
     std::ofstream(file) << text;
     FeatureSource features("polygons", file, {});
     RasterizeParameters parameters;
@@ -168,21 +176,24 @@ int benchVector(std::vector<Metric>& metrics) {
     auto rate = [](const std::function<int()>& pass, double& perSecond) {
         const auto start = std::chrono::steady_clock::now();
         const int count = pass();
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         perSecond = count / seconds;
         return count;
     };
     double rasterizeRate = 0.0;
-    rate([&] {
-        TileEvaluator evaluator(TileFormat{256, 2});
-        int count = 0;
-        for (int level = 11; level <= 13; ++level) {
-            for (const TileKey& key : benchTiles(level)) {
-                count += evaluator.tile(rasterize, key) ? 1 : 0;
+    rate(
+        [&] {
+            TileEvaluator evaluator(TileFormat{256, 2});
+            int count = 0;
+            for (int level = 11; level <= 13; ++level) {
+                for (const TileKey& key : benchTiles(level)) {
+                    count += evaluator.tile(rasterize, key) ? 1 : 0;
+                }
             }
-        }
-        return count;
-    }, rasterizeRate);
+            return count;
+        },
+        rasterizeRate);
     metrics.push_back({"rasterize_tiles_per_s", rasterizeRate});
 
     const ConstantSource ground("ground", 20.0);
@@ -202,21 +213,24 @@ int benchVector(std::vector<Metric>& metrics) {
     }
     double plantsRate = 0.0;
     std::size_t instances = 0;
-    const int tiles = rate([&] {
-        TileEvaluator evaluator(TileFormat{256, 2});
-        int count = 0;
-        for (const TileKey& key : benchTiles(14)) {
-            if (count == 32) {
-                break;
+    const int tiles = rate(
+        [&] {
+            TileEvaluator evaluator(TileFormat{256, 2});
+            int count = 0;
+            for (const TileKey& key : benchTiles(14)) {
+                if (count == 32) {
+                    break;
+                }
+                Result<std::shared_ptr<const InstanceTile>> tile =
+                    plants.value()->instances(key, evaluator);
+                if (tile) {
+                    instances += tile.value()->instances.size();
+                    ++count;
+                }
             }
-            Result<std::shared_ptr<const InstanceTile>> tile = plants.value()->instances(key, evaluator);
-            if (tile) {
-                instances += tile.value()->instances.size();
-                ++count;
-            }
-        }
-        return count;
-    }, plantsRate);
+            return count;
+        },
+        plantsRate);
     metrics.push_back({"plants_tiles_per_s_level14", plantsRate});
     metrics.push_back({"plants_instances_per_tile", tiles ? double(instances) / tiles : 0.0});
     return 0;
