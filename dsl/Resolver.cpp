@@ -1817,7 +1817,10 @@ std::optional<Value> Resolver::coerce(Value value, const AttributeSchema& schema
             }
             if (target == "source" && schema.port != PortType::None) {
                 const Declaration& declaration = declarations_[names_[reference->name]];
-                if (declaration.schema && declaration.schema->output != schema.port) {
+                // A kind whose output depends on its attributes (schema output `none`, e.g.
+                // blend, raster, rasterize) is checked by the source graph instead.
+                if (declaration.schema && declaration.schema->output != PortType::None &&
+                    declaration.schema->output != schema.port) {
                     addError(diagnostics_, "E0406",
                              std::string("expected ") + portTypeName(schema.port) + ", found " +
                                  portTypeName(declaration.schema->output),
