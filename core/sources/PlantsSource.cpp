@@ -172,7 +172,8 @@ PlantsSource::PlantsSource(std::string name, const Source* elevation, const Sour
     // fine enough to resolve the density at the spacing of the instances.
     sampleLevel_ = 0;
     while (sampleLevel_ < TileKey::kMaxLevel &&
-           kPi * Ellipsoid::kMeanRadius / (256.0 * std::ldexp(1.0, sampleLevel_)) > 2.0 * cellSize_) {
+           kPi * Ellipsoid::kMeanRadius / (256.0 * std::ldexp(1.0, sampleLevel_)) >
+               2.0 * cellSize_) {
         ++sampleLevel_;
     }
 }
@@ -554,7 +555,8 @@ Result<std::unique_ptr<Source>> PlantsSource::create(const SourceBuildContext& c
     }
     if (elevation.value()->output() != PortType::Elevation) {
         return Error{reader.where("elevation") + "'elevation' must be an elevation, but source '" +
-                     elevation.value()->name() + "' gives " + portTypeName(elevation.value()->output())};
+                     elevation.value()->name() + "' gives " +
+                     portTypeName(elevation.value()->output())};
     }
     Result<const Source*> density = context.input("density", false);
     if (!density) {
