@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "sylva/core/base/Hash.h"
+#include "sylva/core/sources/ElevationEditSource.h"
 #include "sylva/core/sources/RasterSource.h"
 
 namespace sylva {
@@ -81,6 +82,9 @@ const Source* BlendSource::coverageOf(const Source& elevation) {
     }
     if (const auto* blend = dynamic_cast<const BlendSource*>(&elevation)) {
         return blend->output() == PortType::Elevation ? coverageOf(*blend->base_) : nullptr;
+    }
+    if (const auto* edit = dynamic_cast<const ElevationEditSource*>(&elevation)) {
+        return coverageOf(edit->input());  // edits reshape heights, not where data exists
     }
     return nullptr;
 }

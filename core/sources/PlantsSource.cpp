@@ -172,7 +172,8 @@ PlantsSource::PlantsSource(std::string name, const Source* elevation, const Sour
     // fine enough to resolve the density at the spacing of the instances.
     sampleLevel_ = 0;
     while (sampleLevel_ < TileKey::kMaxLevel &&
-           kPi * Ellipsoid::kMeanRadius / (256.0 * std::ldexp(1.0, sampleLevel_)) > 2.0 * cellSize_) {
+           kPi * Ellipsoid::kMeanRadius / (256.0 * std::ldexp(1.0, sampleLevel_)) >
+               2.0 * cellSize_) {
         ++sampleLevel_;
     }
 }
@@ -253,6 +254,7 @@ Result<std::vector<PlantInstance>> PlantsSource::generate(const TileKey& key, co
     sampleKey.level = sampleLevel_;
     auto keep = [&](double longitudeUnwrapped, double latitude) {
         if (window.owner) {
+            // tileOf wraps the longitude, so ownership does not depend on the shift.
             return tileOf(key, longitudeUnwrapped, latitude) == *window.owner;
         }
         return longitudeUnwrapped >= window.bounds.west &&
@@ -452,9 +454,13 @@ Result<std::vector<PlantInstance>> PlantsSource::generate(const TileKey& key, co
                 CellRandom random(cellSeed(parameters_.seed, row, wrapped, 1));
                 const double latitude =
                     south + marginLatitude + random.uniform() * (rowHeight_ - 2 * marginLatitude);
+                // The position comes from the wrapped cell, so the same instance has the
+                // same bits whichever side of the antimeridian asks; the window test
+                // uses it shifted by whole turns.
+                const double longitude = -kPi + double(wrapped) * cellWidth + marginLongitude +
+                                         random.uniform() * (cellWidth - 2 * marginLongitude);
                 const double longitudeUnwrapped =
-                    -kPi + double(cell) * cellWidth + marginLongitude +
-                    random.uniform() * (cellWidth - 2 * marginLongitude);
+                    longitude + kTwoPi * double((cell - wrapped) / cellsInRow);
                 const double accept = random.uniform();
                 if (!keep(longitudeUnwrapped, latitude)) {
                     continue;
@@ -475,7 +481,6 @@ Result<std::vector<PlantInstance>> PlantsSource::generate(const TileKey& key, co
                         continue;
                     }
                 }
-                const double longitude = std::remainder(longitudeUnwrapped, kTwoPi);
                 Result<const Inputs*> inputs = inputsAt(tileOf(sampleKey, longitude, latitude));
                 if (!inputs) {
                     return inputs.error();
@@ -550,7 +555,8 @@ Result<std::unique_ptr<Source>> PlantsSource::create(const SourceBuildContext& c
     }
     if (elevation.value()->output() != PortType::Elevation) {
         return Error{reader.where("elevation") + "'elevation' must be an elevation, but source '" +
-                     elevation.value()->name() + "' gives " + portTypeName(elevation.value()->output())};
+                     elevation.value()->name() + "' gives " +
+                     portTypeName(elevation.value()->output())};
     }
     Result<const Source*> density = context.input("density", false);
     if (!density) {

@@ -24,7 +24,8 @@ RasterizeSource::RasterizeSource(std::string name, const FeatureSource* features
         .add(parameters_.fill)
         .add(parameters_.outline)
         .add(parameters_.lineWidth);
-    hash.add(parameters_.pointRadius).add(parameters_.minimumTexels)
+    hash.add(parameters_.pointRadius)
+        .add(parameters_.minimumTexels)
         .add(parameters_.color.r)
         .add(parameters_.color.g)
         .add(parameters_.color.b);
@@ -78,8 +79,10 @@ Result<TilePointer> RasterizeSource::produce(const TileKey& key, TileProvider& p
     };
     std::vector<float> coverage, strokes;
     const double minimumWidth = parameters_.minimumTexels * rasterizer.metresPerTexel(0.5 * w).y;
-    const double outlineWidth = parameters_.outline > 0.0 ? std::max(parameters_.outline, minimumWidth) : 0.0;
-    const double lineWidth = parameters_.lineWidth > 0.0 ? std::max(parameters_.lineWidth, minimumWidth) : 0.0;
+    const double outlineWidth =
+        parameters_.outline > 0.0 ? std::max(parameters_.outline, minimumWidth) : 0.0;
+    const double lineWidth =
+        parameters_.lineWidth > 0.0 ? std::max(parameters_.lineWidth, minimumWidth) : 0.0;
     if (features_ != nullptr) {
         Result<std::shared_ptr<const FeatureCollection>> loaded = features_->collection();
         if (!loaded) {
@@ -97,10 +100,9 @@ Result<TilePointer> RasterizeSource::produce(const TileKey& key, TileProvider& p
         }
         // The window reaches out by the widest stroke so outlines of neighbours show.
         const glm::dvec2 metres = rasterizer.metresPerTexel(0.5 * w);
-        const double reach =
-            std::max({outlineWidth, lineWidth, 2.0 * parameters_.pointRadius}) /
-                std::min(metres.x, metres.y) +
-            format.border + 1.0;
+        const double reach = std::max({outlineWidth, lineWidth, 2.0 * parameters_.pointRadius}) /
+                                 std::min(metres.x, metres.y) +
+                             format.border + 1.0;
         const double dx = reach * (key.east() - key.west()) / format.size;
         const double dy = reach * (key.north() - key.south()) / format.size;
         const GeographicBounds window{key.west() - dx, key.south() - dy, key.east() + dx,
@@ -134,16 +136,15 @@ Result<TilePointer> RasterizeSource::produce(const TileKey& key, TileProvider& p
                     }
                     if (outlineWidth > 0.0) {
                         strokes.assign(texels, 0.0f);
-                        rasterizer.strokeLines(feature.parts, hit.longitudeShift,
-                                               outlineWidth, strokes);
+                        rasterizer.strokeLines(feature.parts, hit.longitudeShift, outlineWidth,
+                                               strokes);
                         for (std::size_t i = 0; i < texels; ++i) {
                             coverage[i] = std::max(coverage[i], strokes[i]);
                         }
                     }
                     break;
                 case GeometryKind::Line:
-                    rasterizer.strokeLines(feature.parts, hit.longitudeShift, lineWidth,
-                                           coverage);
+                    rasterizer.strokeLines(feature.parts, hit.longitudeShift, lineWidth, coverage);
                     break;
                 case GeometryKind::Point:
                     for (const glm::dvec2& p : feature.parts.front()) {

@@ -10,7 +10,9 @@
 #include <unistd.h>
 
 #include "sylva/core/geo/Geodesy.h"
+#include "sylva/core/sources/BlendSource.h"
 #include "sylva/core/sources/ConstantSource.h"
+#include "sylva/core/sources/RasterSource.h"
 #include "sylva/core/tiles/TileEvaluator.h"
 
 namespace sylva {
@@ -166,6 +168,20 @@ TEST(ElevationEditSource, SlopeIsAPlaneThroughTheCentroid) {
         }
     }
     EXPECT_GT(checked, 500);
+}
+
+TEST(ElevationEditSource, PassesItsInputsCoverageToBlend) {
+    RasterParameters raster;
+    raster.file = squareFile("unused.geojson", 0, 0, 1).parent_path() / "dem.tif";
+    raster.kind = RasterKind::Elevation;
+    const std::unique_ptr<RasterSource> dem = RasterSource::open("dem", raster);
+    FeatureSource features("dam", squareFile("dam2.geojson", 0, 0, 0.01), {});
+    ElevationEditSource edit("edit", dem.get(), &features, {});
+    ASSERT_NE(dem->coverage(), nullptr);
+    EXPECT_EQ(BlendSource::coverageOf(edit), dem->coverage());
+    const ConstantSource flat("flat", 0.0);
+    ElevationEditSource onConstant("edit2", &flat, &features, {});
+    EXPECT_EQ(BlendSource::coverageOf(onConstant), nullptr);
 }
 
 }  // namespace

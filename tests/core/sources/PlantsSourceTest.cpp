@@ -199,12 +199,56 @@ TEST(PlantsSource, UniqueAcrossBordersAndMinimumSpacingHeld) {
     for (const PlantInstance& i : near.value()) {
         nearSet.insert({i.longitude, i.latitude});
     }
-    const std::shared_ptr<const InstanceTile> centreTile = plants->instances(centre, evaluator).value();
+    const std::shared_ptr<const InstanceTile> centreTile =
+        plants->instances(centre, evaluator).value();
     for (const PlantInstance& i : centreTile->instances) {
         EXPECT_EQ(nearSet.count({i.longitude, i.latitude}), 1u);
     }
     for (const Position& p : nearSet) {
         EXPECT_EQ(unique.count(p), 1u) << "instancesNear invented an instance";
+    }
+}
+
+TEST(PlantsSource, SeamlessAcrossTheAntimeridian) {
+    const ConstantSource ground("ground", 0.0);
+    const FunctionMask full(2, [](double, double) { return 1.0f; });
+    auto plants = scatter(ground, full, 100.0, 4.0);
+    TileEvaluator evaluator(TileFormat{64, 2});
+    TileKey east = keyAt(17, 179.999, -17.0);  // Fiji
+    ASSERT_EQ(east.x, east.columns() - 1);
+    TileKey west = east;
+    west.x = 0;
+    const std::shared_ptr<const InstanceTile> eastTile = plants->instances(east, evaluator).value();
+    const std::shared_ptr<const InstanceTile> westTile = plants->instances(west, evaluator).value();
+    ASSERT_GT(eastTile->instances.size(), 100u);
+    ASSERT_GT(westTile->instances.size(), 100u);
+    // Instances near the line from the other side, with wrapped longitudes.
+    Result<std::vector<PlantInstance>> near = plants->instancesNear(west, 30.0, evaluator);
+    ASSERT_TRUE(near);
+    std::set<Position> fromEast;
+    for (const PlantInstance& i : eastTile->instances) {
+        fromEast.insert({i.longitude, i.latitude});
+    }
+    int crossing = 0;
+    for (const PlantInstance& i : near.value()) {
+        if (i.longitude > 0.0 && i.latitude >= east.south() && i.latitude < east.north()) {
+            EXPECT_EQ(fromEast.count({i.longitude, i.latitude}), 1u);
+            ++crossing;
+        }
+    }
+    EXPECT_GT(crossing, 0);
+    // Spacing holds across the line.
+    const GeographicLib::Geodesic& geodesic = GeographicLib::Geodesic::WGS84();
+    for (const PlantInstance& a : eastTile->instances) {
+        for (const PlantInstance& b : westTile->instances) {
+            if (a.longitude < std::numbers::pi - 1e-5 || b.longitude > -std::numbers::pi + 1e-5) {
+                continue;
+            }
+            double distance = 0.0;
+            geodesic.Inverse(a.latitude / kDegree, a.longitude / kDegree, b.latitude / kDegree,
+                             b.longitude / kDegree, distance);
+            EXPECT_GE(distance, 4.0);
+        }
     }
 }
 
@@ -243,8 +287,10 @@ TEST(PlantsSource, IdenticalAcrossRunsOrdersAndThreads) {
     ASSERT_GT(first.size(), 1000u);
     // A tile's instances are exactly those of its four children.
     TileEvaluator evaluator(TileFormat{64, 2});
-    std::vector<std::tuple<double, double, std::uint32_t, float, float, float, double>> parent, children;
-    const std::shared_ptr<const InstanceTile> parentTile = plants->instances(centre, evaluator).value();
+    std::vector<std::tuple<double, double, std::uint32_t, float, float, float, double>> parent,
+        children;
+    const std::shared_ptr<const InstanceTile> parentTile =
+        plants->instances(centre, evaluator).value();
     for (const PlantInstance& i : parentTile->instances) {
         parent.push_back(key(i));
     }
@@ -253,7 +299,8 @@ TEST(PlantsSource, IdenticalAcrossRunsOrdersAndThreads) {
         child.level += 1;
         child.x = 2 * centre.x + (c & 1);
         child.y = 2 * centre.y + (c >> 1);
-        const std::shared_ptr<const InstanceTile> childTile = plants->instances(child, evaluator).value();
+        const std::shared_ptr<const InstanceTile> childTile =
+            plants->instances(child, evaluator).value();
         for (const PlantInstance& i : childTile->instances) {
             children.push_back(key(i));
         }

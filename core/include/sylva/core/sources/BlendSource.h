@@ -43,7 +43,8 @@ public:
     Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override;
 
     // The Mask source giving the coverage of an elevation source, or nullptr when it
-    // covers everything: a raster's coverage(); a blend passes on its base's.
+    // covers everything: a raster's coverage(); a blend passes on its base's, an
+    // elevation_edit its input's.
     static const Source* coverageOf(const Source& elevation);
 
     // Pyramid level whose texel height is about twice `feather` metres (at most `level`).

@@ -17,6 +17,7 @@
 // approximation: relative height error ~ (extent / Earth radius)², negligible for
 // the kilometre-scale polygons this is for). Polygons only; lines and points, a
 // missing attribute or a non-numeric value are errors naming file, feature and value.
+// For `blend`, the edit covers what its input covers (BlendSource::coverageOf).
 #pragma once
 
 #include <string>
@@ -45,6 +46,8 @@ public:
     static Result<std::unique_ptr<Source>> create(const SourceBuildContext& context);
 
     Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override;
+
+    const Source& input() const { return *input_; }
 
 private:
     const Source* input_;

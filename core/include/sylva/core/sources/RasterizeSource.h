@@ -43,7 +43,7 @@ struct RasterizeParameters {
     // Lines and outlines are drawn at least this many texels wide (0: exactly their
     // width), so thin lines stay visible in coarse tiles, as on a map.
     double minimumTexels = 0.0;
-    glm::vec3 color{1.0f};     // linear RGB
+    glm::vec3 color{1.0f};  // linear RGB
     double opacity = 1.0;
     std::string colorAttribute;
     std::vector<std::pair<std::string, glm::vec3>> colors;  // value -> linear RGB
