@@ -106,6 +106,7 @@ int runRender(const std::vector<std::string>& arguments) {
                                                                    {"gl"},
                                                                    {"shard"},
                                                                    {"progress"},
+                                                                   {"cache-mb"},
                                                                    {"resume", false},
                                                                    {"help", false}});
     if (command.has("help")) {

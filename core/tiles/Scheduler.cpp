@@ -188,12 +188,15 @@ Result<TilePointer> Scheduler::run(std::unique_lock<std::mutex>& lock, const Tas
             report = true;
         }
     }
-    progress_.notify_all();
     if (report && options_.failureSink) {
+        // Counted until the sink returns, so waitIdle() also waits for the report.
+        ++reportsInFlight_;
         lock.unlock();
         options_.failureSink(produced.error());
         lock.lock();
+        --reportsInFlight_;
     }
+    progress_.notify_all();
     return produced;
 }
 
@@ -502,7 +505,7 @@ void Scheduler::retainOnly(const std::unordered_set<std::uint64_t>& live) {
 
 void Scheduler::waitIdle() {
     std::unique_lock lock(mutex_);
-    progress_.wait(lock, [&] { return inbox_.empty() && tasks_.empty(); });
+    progress_.wait(lock, [&] { return inbox_.empty() && tasks_.empty() && reportsInFlight_ == 0; });
 }
 
 void Scheduler::waitForProgress(std::chrono::milliseconds timeout) {

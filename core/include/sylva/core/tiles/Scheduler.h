@@ -180,6 +180,7 @@ private:
     std::condition_variable managerWake_;  // messages arrived, a worker became idle, stop
     std::condition_variable workerWake_;   // a task was dispatched, stop
     std::condition_variable progress_;     // a task finished
+    std::size_t reportsInFlight_ = 0;      // failure sink calls running (outside the lock)
     std::deque<Message> inbox_;            // render thread → manager
     std::deque<TaskId> dispatched_;        // manager → workers
     std::set<std::tuple<int, std::uint64_t, TaskId>> queue_;  // (priority, sequence, id)
