@@ -73,7 +73,7 @@ TEST(VectorGraph, BuildsAndChecksInputs) {
     ASSERT_FALSE(wrong);
     EXPECT_EQ(
         wrong.error().message,
-        "vector.sylva:4:5: source 'trees': 'elevation' must be an elevation, but source 'world' "
+        "vector.sylva:4:5: source 'trees': 'elevation' expects elevation, but source 'world' "
         "gives features");
 
     Result<SourceGraph> both = SourceGraph::build(model(false, true));
