@@ -33,6 +33,8 @@ struct ParsedCommandLine {
 // The value of `--cache-mb N` (tile cache budget in MiB, 16..1048576); nullopt when
 // it is not such a whole number.
 std::optional<std::size_t> parseCacheMegabytes(const std::string& text);
+// "WIDTHxHEIGHT" within 1..16384 each (--size); false for anything else.
+bool parseSize(const std::string& text, int& width, int& height);
 
 ParsedCommandLine parseCommandLine(const std::vector<std::string>& arguments, const std::vector<OptionSpec>& specs);
 

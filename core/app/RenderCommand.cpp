@@ -85,17 +85,6 @@ bool checkWritable(const std::filesystem::path& folder) {
     return true;
 }
 
-bool parseSize(const std::string& text, int& width, int& height) {
-    int w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') ||
-        w < 1 || h < 1 || w > 16384 || h > 16384) {
-        return false;
-    }
-    width = w;
-    height = h;
-    return true;
-}
 
 }  // namespace
 

@@ -101,16 +101,10 @@ int runWatch(const std::vector<std::string>& arguments) {
         return 2;
     }
     int overrideWidth = 0, overrideHeight = 0;
-    if (std::optional<std::string> size = command.get("size")) {
-        int w = 0, h = 0;
-        char x = 0, extra = 0;
-        if (std::sscanf(size->c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 ||
-            (x != 'x' && x != 'X') || w < 1 || h < 1 || w > 16384 || h > 16384) {
-            reportError("--size expects WIDTHxHEIGHT within 1..16384, got '" + *size + "'");
-            return 2;
-        }
-        overrideWidth = w;
-        overrideHeight = h;
+    if (std::optional<std::string> size = command.get("size");
+        size && !parseSize(*size, overrideWidth, overrideHeight)) {
+        reportError("--size expects WIDTHxHEIGHT within 1..16384, got '" + *size + "'");
+        return 2;
     }
     std::size_t cacheMegabytes = 1024;
     if (std::optional<std::string> cache = command.get("cache-mb")) {

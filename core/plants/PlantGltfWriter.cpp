@@ -1,5 +1,7 @@
 #include "sylva/core/plants/PlantGltfWriter.h"
 
+#include "sylva/core/base/AtomicFile.h"
+
 #include <stb_image_write.h>
 #include <unistd.h>
 
@@ -262,25 +264,9 @@ Status PlantGltfWriter::write(const PlantModel& model, const std::filesystem::pa
         return Error{path.string() + ": cannot create folder '" + folder.string() +
                      "': " + error.message()};
     }
-    static std::atomic<unsigned> counter{0};
-    const std::filesystem::path temporary =
-        folder / (".sylva-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
-                  path.filename().string());
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        out.write(bytes->data(), std::streamsize(bytes->size()));
-        out.close();
-        if (!out) {
-            std::filesystem::remove(temporary, error);
-            return Error{path.string() + ": cannot write the file: " + std::strerror(errno)};
-        }
-    }
-    std::filesystem::rename(temporary, path, error);
-    if (error) {
-        std::error_code ignored;
-        std::filesystem::remove(temporary, ignored);
-        return Error{path.string() +
-                     ": cannot move the finished file into place: " + error.message()};
+    const Status written = writeFileAtomically(path, *bytes);
+    if (!written) {
+        return Error{path.string() + ": " + written.error().message};
     }
     return Status::success();
 }

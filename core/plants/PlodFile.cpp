@@ -1,5 +1,7 @@
 #include "sylva/core/plants/PlodFile.h"
 
+#include "sylva/core/base/AtomicFile.h"
+
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -398,29 +400,10 @@ Result<PlantLod> decodePlod(std::span<const std::uint8_t> bytes, const std::stri
 
 Status writePlodFile(const PlantLod& lod, const std::string& path) {
     const std::vector<std::uint8_t> bytes = encodePlod(lod);
-    const std::filesystem::path target(path);
-    std::filesystem::path temporary = target;
-    temporary += ".tmp-" + std::to_string(::getpid());
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        if (!out) {
-            return Error{"cannot write " + path + ": cannot create " + temporary.string()};
-        }
-        out.write(reinterpret_cast<const char*>(bytes.data()),
-                  static_cast<std::streamsize>(bytes.size()));
-        out.flush();
-        if (!out) {
-            std::error_code ignored;
-            std::filesystem::remove(temporary, ignored);
-            return Error{"cannot write " + path + ": write failed (disk full?)"};
-        }
-    }
-    std::error_code error;
-    std::filesystem::rename(temporary, target, error);
-    if (error) {
-        std::error_code ignored;
-        std::filesystem::remove(temporary, ignored);
-        return Error{"cannot write " + path + ": " + error.message()};
+    const Status written = writeFileAtomically(
+        path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    if (!written) {
+        return Error{"cannot write " + path + ": " + written.error().message};
     }
     return Status::success();
 }

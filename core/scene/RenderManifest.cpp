@@ -1,5 +1,7 @@
 #include "sylva/core/scene/RenderManifest.h"
 
+#include "sylva/core/base/AtomicFile.h"
+
 #include <unistd.h>
 #include <cstdio>
 #include <fstream>
@@ -95,21 +97,9 @@ Status RenderManifest::save() const {
     if (file_.has_parent_path()) {
         std::filesystem::create_directories(file_.parent_path(), error);
     }
-    const std::filesystem::path temporary =
-        file_.string() + ".tmp-" + std::to_string(static_cast<long long>(::getpid()));
-    {
-        std::ofstream out(temporary, std::ios::trunc);
-        out << json.dump(2) << "\n";
-        out.flush();
-        if (!out) {
-            std::filesystem::remove(temporary, error);
-            return Error{"cannot write manifest '" + file_.string() + "'"};
-        }
-    }
-    std::filesystem::rename(temporary, file_, error);
-    if (error) {
-        std::filesystem::remove(temporary, error);
-        return Error{"cannot write manifest '" + file_.string() + "': " + error.message()};
+    const Status written = writeFileAtomically(file_, json.dump(2) + "\n");
+    if (!written) {
+        return Error{"cannot write manifest '" + file_.string() + "': " + written.error().message};
     }
     return {};
 }
