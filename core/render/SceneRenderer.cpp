@@ -19,6 +19,11 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const ShaderLibrary
         return terrain.error();
     }
     renderer->terrain_ = std::move(terrain.value());
+    Result<std::unique_ptr<VegetationRenderer>> vegetation = VegetationRenderer::create(library);
+    if (!vegetation) {
+        return vegetation.error();
+    }
+    renderer->vegetation_ = std::move(vegetation.value());
     Result<std::unique_ptr<ShadingPass>> shading = ShadingPass::create(library);
     if (!shading) {
         return shading.error();
@@ -110,8 +115,18 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     const auto terrainStart = std::chrono::steady_clock::now();
     terrain_->draw(camera, projection, levels, settings.ocean);
     glFinish();  // only to time the pass; the read-back below waits anyway
-    statistics_.terrainPassSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - terrainStart).count();
+    const auto vegetationStart = std::chrono::steady_clock::now();
+    statistics_.terrainPassSeconds = std::chrono::duration<double>(vegetationStart - terrainStart).count();
+    statistics_.vegetation = {};
+    statistics_.vegetationPassSeconds = 0;
+    if (!settings.instanceBatches.empty()) {
+        vegetation_->draw(settings.instanceBatches, camera, projection, near, settings.width, settings.height,
+                          settings.vegetation);
+        glFinish();  // only to time the pass
+        statistics_.vegetation = vegetation_->statistics();
+        statistics_.vegetationPassSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - vegetationStart).count();
+    }
     ShadingSettings shading;
     shading.sunDirection = settings.sunDirection;
     shading.atmosphere = settings.atmosphere;

@@ -1,6 +1,6 @@
 #version 450 core
-// The shading pass: the only place light is computed. Reads the G-buffer (albedo,
-// normal, reversed-Z depth), lights terrain by the sun and sky, adds aerial
+// The shading pass: the only place light is computed. Reads the G-buffer (albedo and
+// ambient occlusion, normal, reversed-Z depth), lights terrain by the sun and sky, adds aerial
 // perspective and the sky from the atmosphere model, tone maps and writes sRGB.
 #include "atmosphere.glsl"
 
@@ -46,7 +46,9 @@ void main() {
         vec3 sunLight = SUN_INTENSITY * (uAtmosphere ? extinction(opticalDepthToSun(toSphereSpace(surfaceEcef), sun))
                                                      : vec3(1.0));
         float daylight = clamp(dot(upView, uSunView) * 2.0 + 0.3, 0.0, 1.0);
-        vec3 ambient = SUN_INTENSITY * vec3(0.05, 0.07, 0.11) * daylight * (0.6 + 0.4 * dot(normal, upView));
+        // albedo.a: ambient occlusion (1 for terrain; per primitive for plants, §6.5).
+        vec3 ambient = SUN_INTENSITY * vec3(0.05, 0.07, 0.11) * daylight * (0.6 + 0.4 * dot(normal, upView)) *
+                       albedo.a;
         // Lambertian: radiance = albedo / pi * irradiance.
         vec3 surface = albedo.rgb / PI * (sunLight * sunDiffuse + ambient);
         if (normalMaterial.w > 0.5) {  // water: sun glint and a little sky reflection

@@ -16,7 +16,7 @@ uniform bool uHasColor;
 uniform bool uOcean;
 uniform mat3 uEcefToView;
 
-layout(location = 0) out vec4 outAlbedo;  // rgb: linear albedo, a: 1 = terrain
+layout(location = 0) out vec4 outAlbedo;  // rgb: linear albedo, a: ambient occlusion (1)
 layout(location = 1) out vec4 outNormal;  // xyz: view-space normal, w: material (1 = water)
 
 void main() {

@@ -19,6 +19,7 @@
 #include "sylva/render/Framebuffer.h"
 #include "sylva/render/ShadingPass.h"
 #include "sylva/render/TerrainRenderer.h"
+#include "sylva/render/VegetationRenderer.h"
 
 namespace sylva::render {
 
@@ -33,6 +34,10 @@ struct RenderSettings {
     // image is then independent of thread timing); interactive use draws what is
     // ready and lets the provider's workers catch up (seed 001 §4.7).
     bool waitForTiles = true;
+    VegetationSettings vegetation;
+    // Plants handed in directly (tests, benchmarks), drawn with the species of
+    // vegetation(); the `plants` layers of the scenario are streamed besides.
+    std::vector<const InstanceBatch*> instanceBatches;
 };
 
 struct Image {
@@ -46,6 +51,8 @@ struct RenderStatistics {
     double heightAboveTerrain = 0;  // metres
     double gpuSeconds = 0;          // draw + shade + read-back
     double terrainPassSeconds = 0;  // the terrain's G-buffer pass alone (to glFinish)
+    double vegetationPassSeconds = 0;  // selection, upload and the plants' G-buffer pass
+    VegetationStatistics vegetation;
 };
 
 class SceneRenderer {
@@ -67,12 +74,14 @@ public:
     std::vector<float> depth() const { return gbuffer_.readDepth(); }
     double near() const { return near_; }
     TerrainRenderer& terrain() { return *terrain_; }
+    VegetationRenderer& vegetation() { return *vegetation_; }
 
 private:
     SceneRenderer() = default;
     Status ensureTargets(int width, int height);
 
     std::unique_ptr<TerrainRenderer> terrain_;
+    std::unique_ptr<VegetationRenderer> vegetation_;
     std::unique_ptr<ShadingPass> shading_;
     Framebuffer gbuffer_;
     Framebuffer output_;
