@@ -1,0 +1,214 @@
+// Golden images of the vegetation renderer (issue 7): one generated oak at four
+// distances, the source mesh above and the ellipsoid/line LoD below; a forest seen from
+// above; and a slow dolly towards a tree whose per-frame image change stays bounded
+// (no popping between LoD steps or at the mesh handover).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "GoldenImage.h"
+#include "sylva/core/geo/Ellipsoid.h"
+#include "sylva/core/plants/PlantGenerator.h"
+#include "sylva/core/plants/PlantLodBuilder.h"
+#include "sylva/core/sources/ConstantSource.h"
+#include "sylva/core/sources/NormalMapSource.h"
+#include "sylva/core/tiles/TileEvaluator.h"
+#include "sylva/render/GlContext.h"
+#include "sylva/render/SceneRenderer.h"
+
+namespace sylva::render {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180;
+constexpr double kGround = 50.0;  // metres, the flat test terrain
+constexpr double kLatitude = 47.0 * kDegree, kLongitude = 8.0 * kDegree;
+
+class VegetationGolden : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        Result<std::unique_ptr<GlContext>> created = GlContext::create({});
+        ASSERT_TRUE(created) << created.error().message;
+        context_ = std::move(created.value()).release();
+        elevation_ = new ConstantSource("flat", kGround);
+        color_ = new ConstantSource("grass", glm::vec4(0.09f, 0.13f, 0.05f, 1.0f));
+        normals_ = new NormalMapSource("flat.normals", elevation_, 1.0);
+        evaluator_ = new TileEvaluator(TileFormat{256, 2});
+        Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(ShaderLibrary(), TerrainSettings{});
+        ASSERT_TRUE(renderer) << renderer.error().message;
+        renderer_ = renderer.value().release();
+
+        // A small oak (600 leaves) with a quick LoD build: the same code path as
+        // `sylva plant build`, sized for a test.
+        Result<TreeParameters> preset = PlantGenerator::preset("oak");
+        ASSERT_TRUE(preset);
+        PlantGeneratorOptions options;
+        options.seed = 3;
+        options.leafCount = 600;
+        options.leafTextureSize = 64;
+        Result<PlantModel> model = PlantGenerator::generate(preset.value(), options);
+        ASSERT_TRUE(model) << model.error().message;
+        PlantLodOptions lodOptions;
+        lodOptions.restarts = 2;
+        lodOptions.resolution = 64;
+        lodOptions.views = 4;
+        lodOptions.ambientOcclusionSamples = 16;
+        Result<PlantLod> lod = buildPlantLod(model.value(), lodOptions);
+        ASSERT_TRUE(lod) << lod.error().message;
+        auto asset = std::make_shared<PlantAsset>();
+        asset->name = "oak";
+        asset->model = std::move(model.value());
+        asset->lod = std::move(lod.value());
+        species_ = renderer_->vegetation().addSpecies(asset);
+    }
+    static void TearDownTestSuite() {
+        delete renderer_;
+        delete evaluator_;
+        delete normals_;
+        delete color_;
+        delete elevation_;
+        delete context_;
+    }
+
+    // A camera `distance` metres south of the origin, `height` metres above the ground,
+    // looking north with `pitch` (radians).
+    static Camera camera(double distance, double height, double pitch, double fov) {
+        Camera c;
+        c.geodetic = {kLatitude - distance / 6367000.0, kLongitude, kGround + height};
+        c.position = Ellipsoid::toEcef(c.geodetic);
+        c.axes = Camera::axesFromAngles(c.geodetic, 0.0, pitch, 0.0);
+        c.verticalFov = fov;
+        return c;
+    }
+
+    static InstancePlacement placement(double north, double east, float heading, float scale) {
+        InstancePlacement p;
+        p.latitude = kLatitude + north / 6367000.0;
+        p.longitude = kLongitude + east / (6367000.0 * std::cos(kLatitude));
+        p.baseEcef = Ellipsoid::toEcef({p.latitude, p.longitude, kGround});
+        p.heading = heading;
+        p.scale = scale;
+        p.species = species_;
+        return p;
+    }
+
+    static Image render(const Camera& c, int width, int height, const std::vector<const InstanceBatch*>& batches,
+                        const VegetationSettings& vegetation) {
+        RenderSettings settings;
+        settings.width = width;
+        settings.height = height;
+        settings.sunDirection = glm::normalize(Ellipsoid::surfaceNormal(kLatitude - 0.4, kLongitude - 0.5));
+        settings.atmosphere = true;
+        settings.ocean = false;
+        settings.vegetation = vegetation;
+        settings.instanceBatches = batches;
+        const TerrainLayers layers{elevation_, color_, normals_};
+        Result<Image> image = renderer_->render(layers, *evaluator_, c, settings);
+        EXPECT_TRUE(image) << image.error().message;
+        return image ? image.value() : Image{};
+    }
+
+    static GlContext* context_;
+    static ConstantSource* elevation_;
+    static ConstantSource* color_;
+    static NormalMapSource* normals_;
+    static TileEvaluator* evaluator_;
+    static SceneRenderer* renderer_;
+    static std::uint32_t species_;
+};
+GlContext* VegetationGolden::context_ = nullptr;
+ConstantSource* VegetationGolden::elevation_ = nullptr;
+ConstantSource* VegetationGolden::color_ = nullptr;
+NormalMapSource* VegetationGolden::normals_ = nullptr;
+TileEvaluator* VegetationGolden::evaluator_ = nullptr;
+SceneRenderer* VegetationGolden::renderer_ = nullptr;
+std::uint32_t VegetationGolden::species_ = 0;
+
+// Copies `tile` into `target` at column `x`, row `y` (pixels).
+void paste(std::vector<std::uint8_t>& target, int targetWidth, const Image& tile, int x, int y) {
+    for (int row = 0; row < tile.height; ++row) {
+        std::copy_n(tile.pixels.begin() + std::ptrdiff_t(row) * tile.width * 4, tile.width * 4,
+                    target.begin() + (std::ptrdiff_t(y + row) * targetWidth + x) * 4);
+    }
+}
+
+TEST_F(VegetationGolden, OneTreeAtFourDistancesMeshAboveLodBelow) {
+    const InstanceBatch batch =
+        LodSelector::makeBatch(placement(0, 0, 0.3f, 1.0f).baseEcef, {placement(0, 0, 0.3f, 1.0f)},
+                               renderer_->vegetation().speciesLods());
+    constexpr int kTile = 160, kTileHeight = 120;
+    const double distances[4] = {15.0, 45.0, 140.0, 420.0};
+    std::vector<std::uint8_t> sheet(std::size_t(kTile) * 4 * kTileHeight * 2 * 4, 0);
+    for (int column = 0; column < 4; ++column) {
+        const Camera c = camera(distances[column], 4.0, 6.0 * kDegree, 40.0 * kDegree);
+        for (int row = 0; row < 2; ++row) {
+            VegetationSettings settings;
+            settings.method = row == 0 ? VegetationMethod::Mesh : VegetationMethod::Lod;
+            settings.closeUpMesh = false;
+            const Image image = render(c, kTile, kTileHeight, {&batch}, settings);
+            ASSERT_FALSE(image.pixels.empty());
+            paste(sheet, kTile * 4, image, column * kTile, row * kTileHeight);
+            const VegetationStatistics& statistics = renderer_->statistics().vegetation;
+            EXPECT_EQ(statistics.visibleInstances, 1u) << "distance " << distances[column];
+        }
+    }
+    golden::checkGolden("vegetation_tree_distances", kTile * 4, kTileHeight * 2, sheet);
+}
+
+TEST_F(VegetationGolden, ForestFromAbove) {
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> offset(-60.0, 60.0);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<InstancePlacement> placements;
+    for (int i = 0; i < 250; ++i) {
+        InstancePlacement p = placement(offset(random), offset(random), unit(random) * 6.28f, 0.8f + 0.4f * unit(random));
+        p.tint = glm::vec3(0.9f + 0.2f * unit(random));
+        placements.push_back(p);
+    }
+    const InstanceBatch batch =
+        LodSelector::makeBatch(placement(0, 0, 0, 1).baseEcef, placements, renderer_->vegetation().speciesLods());
+    const Camera c = camera(110.0, 120.0, -45.0 * kDegree, 50.0 * kDegree);
+    const Image image = render(c, 320, 180, {&batch}, VegetationSettings{});
+    golden::checkGolden("vegetation_forest_above", 320, 180, image.pixels);
+    const VegetationStatistics& statistics = renderer_->statistics().vegetation;
+    EXPECT_GT(statistics.visibleInstances, 150u);
+    EXPECT_LT(statistics.visibleInstances, 251u);
+}
+
+// A dolly from 300 m to 8 m: every LoD step and the mesh handover happen on the way.
+// The image change per frame must stay close to that of the source mesh along the same
+// path (which has no LoD steps): a step that popped would change a whole crown at once.
+TEST_F(VegetationGolden, SlowDollyHasNoPopping) {
+    const InstanceBatch batch =
+        LodSelector::makeBatch(placement(0, 0, 0.3f, 1.0f).baseEcef, {placement(0, 0, 0.3f, 1.0f)},
+                               renderer_->vegetation().speciesLods());
+    const glm::vec3 crown = renderer_->vegetation().speciesLods()[0].sphereCenter;
+    double worst[2] = {0.0, 0.0};
+    for (int method = 0; method < 2; ++method) {
+        VegetationSettings settings;
+        settings.method = method == 0 ? VegetationMethod::Lod : VegetationMethod::Mesh;
+        Image previous;
+        const int frames = 48;
+        for (int frame = 0; frame <= frames; ++frame) {
+            const double distance = 300.0 * std::pow(8.0 / 300.0, double(frame) / frames);
+            const double pitch = std::atan((crown.z - 2.0) / distance);
+            const Camera c = camera(distance, 2.0, pitch, 40.0 * kDegree);
+            const Image image = render(c, 160, 120, {&batch}, settings);
+            if (!previous.pixels.empty()) {
+                const golden::Comparison change = golden::compareImages(image.pixels, previous.pixels, nullptr);
+                worst[method] = std::max(worst[method], change.rmse);
+            }
+            previous = image;
+        }
+    }
+    EXPECT_LT(worst[0], 1.5 * worst[1] + 2.0)
+        << "largest per-frame RMSE change: LoD " << worst[0] << ", mesh " << worst[1];
+    std::printf("dolly: largest per-frame RMSE change LoD %.2f, mesh %.2f\n", worst[0], worst[1]);
+}
+
+}  // namespace
+}  // namespace sylva::render
