@@ -174,6 +174,7 @@ Result<PlantLod> buildPlantLod(const PlantModel& model, const PlantLodOptions& o
     LineHierarchyOptions lineOptions = options.lines;
     lineOptions.seed = options.seed;
     lineOptions.widthScale = 1.0f;
+    lineOptions.threads = threads;
     if (!model.skeleton.empty() && model.triangleCount(PlantPart::Branch) > 0) {
         stage("line calibration", 0.7);
         const LineSkeleton original(model.skeleton, barkColor);
@@ -194,7 +195,12 @@ Result<PlantLod> buildPlantLod(const PlantModel& model, const PlantLodOptions& o
     }
     LineHierarchyResult lineHierarchy;
     if (!model.skeleton.empty()) {
-        lineHierarchy = buildLineHierarchy(model.skeleton, barkColor, rasterizer, lineOptions,
+        // The merge order is chosen on images without supersampling: a quarter of the
+        // pixels, and lines thinner than a pixel are still drawn by coverage, so the
+        // ranking of merges hardly changes; the level errors below use the full images.
+        const PrimitiveRasterizer mergeRasterizer(bounds.minimum, bounds.maximum,
+                                                  options.resolution, options.views, 1);
+        lineHierarchy = buildLineHierarchy(model.skeleton, barkColor, mergeRasterizer, lineOptions,
                                            report, 0.72, 0.85);
     }
 
