@@ -316,4 +316,38 @@ double plantLodImageError(const PlantModel& model, const PlantLod& lod, float er
                       threads);
 }
 
+double plantMeshImageError(const PlantModel& source, const PlantModel& candidate,
+                           const PlantLodOptions& options) {
+    const Bounds bounds = modelBounds(source);
+    const PrimitiveRasterizer rasterizer(bounds.minimum, bounds.maximum, options.resolution,
+                                         options.views, options.supersampling);
+    const int threads = resolveThreadCount(options.threads);
+    const auto reference = renderReference(rasterizer, source, PlantPart::Leaf, true, threads);
+    const auto drawn = renderReference(rasterizer, candidate, PlantPart::Leaf, true, threads);
+    std::vector<double> mean;
+    for (int view = 0; view < rasterizer.viewCount(); ++view) {
+        const std::vector<double> levels =
+            multiScaleSquaredErrors(drawn[view], reference[view], rasterizer.resolution());
+        mean.resize(levels.size(), 0.0);
+        for (std::size_t k = 0; k < levels.size(); ++k) {
+            mean[k] += levels[k] / rasterizer.viewCount();
+        }
+    }
+    return multiScaleRmse(mean);
+}
+
+Status addBillboardClouds(const PlantModel& model, PlantLod& lod, const PlantLodOptions& options,
+                          const BillboardCloudOptions& billboardOptions) {
+    Result<BillboardCloud> cloud = BillboardCloudBuilder::build(model, billboardOptions);
+    if (!cloud) {
+        return Error{"plant '" + model.name + "': billboard clouds: " + cloud.error().message};
+    }
+    for (BillboardLevel& level : cloud->levels) {
+        const PlantModel levelModel = BillboardCloudBuilder::levelModel(level, model.name);
+        level.imageError = static_cast<float>(plantMeshImageError(model, levelModel, options));
+    }
+    lod.billboards = std::move(cloud.value());
+    return Status::success();
+}
+
 }  // namespace sylva
