@@ -136,13 +136,15 @@ int runPlantBuild(const std::vector<std::string>& rawArguments) {
                                                             {"seed"},
                                                             {"restarts"},
                                                             {"ao-samples"},
+                                                            {"bbc", false},
                                                             {"help", false}});
     if (command.has("help")) {
         std::puts(
             "usage: sylva plant build (IN | --synthetic LEAVES) -o OUT.plod [--threads N] [--seed "
             "N]\n"
-            "                         [--restarts N] [--ao-samples N]\n"
-            "builds the ellipsoid/line LoD of a plant (seed 001 ch. 3) into a .plod file");
+            "                         [--restarts N] [--ao-samples N] [--bbc]\n"
+            "builds the ellipsoid/line LoD of a plant (seed 001 ch. 3) into a .plod file;\n"
+            "--bbc adds billboard clouds (seed 003) for comparison");
         return 0;
     }
     if (!command.error.empty()) {
@@ -200,12 +202,20 @@ int runPlantBuild(const std::vector<std::string>& rawArguments) {
         reportError(lod.error().message);
         return 1;
     }
+    if (command.has("bbc")) {
+        std::fprintf(stderr, "plant build: billboard clouds\n");
+        if (Status built = addBillboardClouds(*model, *lod, options); !built) {
+            reportError(built.error().message);
+            return 1;
+        }
+    }
     if (Status written = writePlodFile(*lod, *out); !written) {
         reportError(written.error().message);
         return 1;
     }
-    std::printf("wrote %s: %zu levels, %zu ellipsoids, %zu lines\n", out->c_str(),
-                lod->levels.size(), lod->ellipsoids.size(), lod->lines.size());
+    std::printf("wrote %s: %zu levels, %zu ellipsoids, %zu lines, %zu billboard levels\n",
+                out->c_str(), lod->levels.size(), lod->ellipsoids.size(), lod->lines.size(),
+                lod->billboards.levels.size());
     return 0;
 }
 
@@ -244,6 +254,16 @@ int runPlantInfo(const std::vector<std::string>& arguments) {
                     formatError(l.errorMinimum).c_str(), formatError(l.errorMaximum).c_str(),
                     l.ellipsoidCount, l.lineCount, l.imageError, l.alphaThreshold,
                     l.primitiveScale);
+    }
+    if (!lod->billboards.levels.empty()) {
+        std::printf("billboard level  epsilon (m)  planes  atlas        bytes  rmse\n");
+        for (std::size_t k = 0; k < lod->billboards.levels.size(); ++k) {
+            const BillboardLevel& b = lod->billboards.levels[k];
+            char atlas[32];
+            std::snprintf(atlas, sizeof atlas, "%dx%d", b.atlas.width, b.atlas.height);
+            std::printf("%15zu  %11.3f  %6zu  %-9s  %8llu  %.5f\n", k, b.epsilon, b.quads.size(),
+                        atlas, static_cast<unsigned long long>(b.byteSize()), b.imageError);
+        }
     }
     return 0;
 }

@@ -6,10 +6,14 @@
 #include <random>
 
 #include "sylva/core/base/Check.h"
+#include "sylva/core/plants/PlantThreads.h"
 
 namespace sylva {
 
 namespace {
+
+// Stale candidates re-measured together (in parallel) when one reaches the heap's top.
+constexpr int kRemeasureBatch = 4;
 
 float coneVolume(const LodLine& line) {
     const float h = glm::length(line.end - line.start);
@@ -221,24 +225,76 @@ LineHierarchyResult buildLineHierarchy(const std::vector<SkeletonSegment>& segme
         current.push_back(frame);
         reference.push_back(std::move(frame));
     }
+    // Per view, a uniform grid of node ids by screen bounds, so a render visits only the
+    // lines near its rectangle instead of every live line. Entries are never removed:
+    // dead nodes and outdated bounds are filtered at lookup.
+    constexpr int kGridCells = 16;
+    const int cellPixels = (rasterizer.renderSize() + kGridCells - 1) / kGridCells;
+    std::vector<std::vector<std::vector<int>>> grid(
+        views, std::vector<std::vector<int>>(kGridCells * kGridCells));
+    const auto cellRange = [&](const PixelRect& rect, auto&& visit) {
+        if (rect.empty()) {
+            return;
+        }
+        const int cx0 = std::clamp(rect.x0 / cellPixels, 0, kGridCells - 1);
+        const int cx1 = std::clamp((rect.x1 - 1) / cellPixels, 0, kGridCells - 1);
+        const int cy0 = std::clamp(rect.y0 / cellPixels, 0, kGridCells - 1);
+        const int cy1 = std::clamp((rect.y1 - 1) / cellPixels, 0, kGridCells - 1);
+        for (int cy = cy0; cy <= cy1; ++cy) {
+            for (int cx = cx0; cx <= cx1; ++cx) {
+                visit(cy * kGridCells + cx);
+            }
+        }
+    };
+    const auto insertIntoGrid = [&](int v, int id) {
+        cellRange(bounds[v][id], [&](int cell) { grid[v][cell].push_back(id); });
+    };
+    // The live lines whose bounds overlap `rect`, ascending (= the order of `alive`).
+    const auto linesNear = [&](int v, const PixelRect& rect) {
+        std::vector<int> found;
+        cellRange(rect, [&](int cell) {
+            for (int id : grid[v][cell]) {
+                if (nodes[id].alive && overlaps(bounds[v][id], rect)) {
+                    found.push_back(id);
+                }
+            }
+        });
+        std::sort(found.begin(), found.end());
+        found.erase(std::unique(found.begin(), found.end()), found.end());
+        return found;
+    };
+    for (int v = 0; v < views; ++v) {
+        for (int id : alive) {
+            insertIntoGrid(v, id);
+        }
+    }
+
     double totalSquared = 0.0;
     const double pixelCount =
         static_cast<double>(views) * rasterizer.renderSize() * rasterizer.renderSize();
 
-    // Renders the tiles a merge changes and returns the change of the squared error.
-    const auto render = [&](LineMergeKind kind, int a, int b, std::vector<RasterFrame>* tiles) {
+    // Renders the tiles a merge changes and returns the change of the squared error;
+    // `footprint` receives the rectangle per view that the measurement depends on.
+    const auto render = [&](LineMergeKind kind, int a, int b, std::vector<RasterFrame>* tiles,
+                            std::vector<PixelRect>* footprint) {
         const LineMergePreview p = skeleton.preview(kind, a, b);
         double delta = 0.0;
+        if (footprint) {
+            footprint->assign(views, PixelRect{});
+        }
         for (int v = 0; v < views; ++v) {
             PixelRect rect = unite(bounds[v][a], bounds[v][b]);
             rect = unite(rect, rasterizer.lineBounds(p.merged, v, scale));
             for (const auto& [id, line] : p.moved) {
                 rect = unite(rect, unite(bounds[v][id], rasterizer.lineBounds(line, v, scale)));
             }
+            if (footprint) {
+                (*footprint)[v] = rect;
+            }
             RasterFrame tile = rasterizer.blankFrame(rect);
             if (!rect.empty()) {
-                for (int id : alive) {
-                    if (id == a || id == b || !overlaps(bounds[v][id], rect)) {
+                for (int id : linesNear(v, rect)) {
+                    if (id == a || id == b) {
                         continue;
                     }
                     auto moved = std::find_if(p.moved.begin(), p.moved.end(),
@@ -272,11 +328,17 @@ LineHierarchyResult buildLineHierarchy(const std::vector<SkeletonSegment>& segme
         return delta;
     };
 
+    // `error` is the change of the squared error the merge would cause. It depends only
+    // on the pixels of the candidate's footprint (and on the lines a, b and b's children),
+    // so it stays exact until an applied merge touches them; only then is it re-measured
+    // (seed 001 Algorithm 2 re-measures every cached candidate after each merge, which
+    // made the heap dominate the build for skeletons of thousands of lines).
     struct Candidate {
         double error = 0.0;
-        int measuredStep = 0;
+        bool stale = false;
         LineMergeKind kind = LineMergeKind::Straighten;
         int a = -1, b = -1;
+        std::vector<PixelRect> footprint;  // per view
     };
     const auto worse = [](const Candidate& x, const Candidate& y) {
         if (x.error != y.error) {
@@ -297,7 +359,7 @@ LineHierarchyResult buildLineHierarchy(const std::vector<SkeletonSegment>& segme
     const auto candidateFor = [&](int x, std::vector<Candidate>& out, bool everySibling) {
         const LineNode& node = nodes[x];
         if (node.children.size() == 1) {
-            out.push_back({0.0, 0, LineMergeKind::Straighten, x, node.children[0]});
+            out.push_back({0.0, false, LineMergeKind::Straighten, x, node.children[0], {}});
         } else if (node.children.empty()) {
             std::vector<int> partners;
             for (int s : skeleton.siblings(x)) {
@@ -311,12 +373,13 @@ LineHierarchyResult buildLineHierarchy(const std::vector<SkeletonSegment>& segme
             if (everySibling) {
                 for (int s : partners) {
                     if (x < s) {
-                        out.push_back({0.0, 0, LineMergeKind::Combine, x, s});
+                        out.push_back({0.0, false, LineMergeKind::Combine, x, s, {}});
                     }
                 }
             } else {
                 const int s = partners[random() % partners.size()];
-                out.push_back({0.0, 0, LineMergeKind::Combine, std::min(x, s), std::max(x, s)});
+                out.push_back(
+                    {0.0, false, LineMergeKind::Combine, std::min(x, s), std::max(x, s), {}});
             }
         }
     };
@@ -351,10 +414,35 @@ LineHierarchyResult buildLineHierarchy(const std::vector<SkeletonSegment>& segme
         if (static_cast<int>(gathered.size()) > options.newCandidates) {
             gathered.resize(options.newCandidates);
         }
+        // A candidate already in the heap with a current measurement would measure the
+        // same again: keep the heap's. A stale copy in the heap is dropped for the new one.
+        std::erase_if(gathered, [&](const Candidate& c) {
+            for (Candidate& h : heap) {
+                if (h.kind == c.kind && h.a == c.a && h.b == c.b) {
+                    if (!h.stale) {
+                        return true;
+                    }
+                    h.a = h.b = -1;  // invalid: discarded when popped
+                }
+            }
+            return false;
+        });
+        for (std::size_t i = 0; i < gathered.size(); ++i) {
+            for (std::size_t j = i + 1; j < gathered.size(); ++j) {
+                if (gathered[j].kind == gathered[i].kind && gathered[j].a == gathered[i].a &&
+                    gathered[j].b == gathered[i].b) {
+                    gathered[j].a = gathered[j].b = -1;
+                }
+            }
+        }
+        std::erase_if(gathered, [](const Candidate& c) { return c.a < 0; });
+        std::make_heap(heap.begin(), heap.end(), worse);
+        runOnThreads(static_cast<int>(gathered.size()), options.threads, [&](int i) {
+            Candidate& c = gathered[i];
+            c.error = render(c.kind, c.a, c.b, nullptr, &c.footprint);
+        });
         for (Candidate& c : gathered) {
-            c.error = totalSquared + render(c.kind, c.a, c.b, nullptr);
-            c.measuredStep = step;
-            heap.push_back(c);
+            heap.push_back(std::move(c));
             std::push_heap(heap.begin(), heap.end(), worse);
         }
         bool applied = false;
@@ -365,15 +453,33 @@ LineHierarchyResult buildLineHierarchy(const std::vector<SkeletonSegment>& segme
             if (!skeleton.valid(best.kind, best.a, best.b)) {
                 continue;
             }
-            if (best.measuredStep < step) {
-                best.error = totalSquared + render(best.kind, best.a, best.b, nullptr);
-                best.measuredStep = step;
-                heap.push_back(best);
-                std::push_heap(heap.begin(), heap.end(), worse);
+            if (best.stale) {
+                // Re-measure the stale candidates at the top of the heap together, on all
+                // threads. The batch size is fixed, so the merge order does not depend on
+                // the thread count.
+                std::vector<Candidate> batch;
+                batch.push_back(std::move(best));
+                while (!heap.empty() && static_cast<int>(batch.size()) < kRemeasureBatch &&
+                       heap.front().stale) {
+                    std::pop_heap(heap.begin(), heap.end(), worse);
+                    if (skeleton.valid(heap.back().kind, heap.back().a, heap.back().b)) {
+                        batch.push_back(std::move(heap.back()));
+                    }
+                    heap.pop_back();
+                }
+                runOnThreads(static_cast<int>(batch.size()), options.threads, [&](int i) {
+                    Candidate& c = batch[i];
+                    c.error = render(c.kind, c.a, c.b, nullptr, &c.footprint);
+                });
+                for (Candidate& c : batch) {
+                    c.stale = false;
+                    heap.push_back(std::move(c));
+                    std::push_heap(heap.begin(), heap.end(), worse);
+                }
                 continue;
             }
             std::vector<RasterFrame> tiles;
-            totalSquared += render(best.kind, best.a, best.b, &tiles);
+            totalSquared += render(best.kind, best.a, best.b, &tiles, nullptr);
             totalSquared = std::max(totalSquared, 0.0);
             for (int v = 0; v < views; ++v) {
                 const RasterFrame& tile = tiles[v];
@@ -391,9 +497,29 @@ LineHierarchyResult buildLineHierarchy(const std::vector<SkeletonSegment>& segme
             const int created = skeleton.apply(best.kind, best.a, best.b, step);
             for (int v = 0; v < views; ++v) {
                 bounds[v].push_back(rasterizer.lineBounds(nodes[created].line, v, scale));
+                insertIntoGrid(v, created);
                 for (const auto& [id, line] : p.moved) {
                     bounds[v][id] = rasterizer.lineBounds(line, v, scale);
+                    insertIntoGrid(v, id);
                 }
+            }
+            // Candidates whose footprint or lines the merge touched must be re-measured.
+            for (Candidate& c : heap) {
+                if (c.stale) {
+                    continue;
+                }
+                bool touched = c.a == best.a || c.a == best.b || c.b == best.a || c.b == best.b;
+                for (const auto& [id, line] : p.moved) {
+                    touched = touched || id == c.a || id == c.b;
+                }
+                for (int involved : {best.a, best.b}) {
+                    const int parent = nodes[involved].parent;
+                    touched = touched || parent == c.a || parent == c.b;
+                }
+                for (int v = 0; v < views && !touched; ++v) {
+                    touched = overlaps(c.footprint[v], tiles[v].rect);
+                }
+                c.stale = touched;
             }
             std::erase_if(alive, [&](int i) { return i == best.a || i == best.b; });
             alive.push_back(created);

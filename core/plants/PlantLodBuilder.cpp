@@ -174,6 +174,7 @@ Result<PlantLod> buildPlantLod(const PlantModel& model, const PlantLodOptions& o
     LineHierarchyOptions lineOptions = options.lines;
     lineOptions.seed = options.seed;
     lineOptions.widthScale = 1.0f;
+    lineOptions.threads = threads;
     if (!model.skeleton.empty() && model.triangleCount(PlantPart::Branch) > 0) {
         stage("line calibration", 0.7);
         const LineSkeleton original(model.skeleton, barkColor);
@@ -194,7 +195,12 @@ Result<PlantLod> buildPlantLod(const PlantModel& model, const PlantLodOptions& o
     }
     LineHierarchyResult lineHierarchy;
     if (!model.skeleton.empty()) {
-        lineHierarchy = buildLineHierarchy(model.skeleton, barkColor, rasterizer, lineOptions,
+        // The merge order is chosen on images without supersampling: a quarter of the
+        // pixels, and lines thinner than a pixel are still drawn by coverage, so the
+        // ranking of merges hardly changes; the level errors below use the full images.
+        const PrimitiveRasterizer mergeRasterizer(bounds.minimum, bounds.maximum,
+                                                  options.resolution, options.views, 1);
+        lineHierarchy = buildLineHierarchy(model.skeleton, barkColor, mergeRasterizer, lineOptions,
                                            report, 0.72, 0.85);
     }
 
@@ -308,6 +314,40 @@ double plantLodImageError(const PlantModel& model, const PlantLod& lod, float er
     const auto reference = renderReference(rasterizer, model, PlantPart::Leaf, true, threads);
     return imageError(rasterizer, ellipsoidsAt(lod, error), linesAt(lod, error), 1.0f, reference,
                       threads);
+}
+
+double plantMeshImageError(const PlantModel& source, const PlantModel& candidate,
+                           const PlantLodOptions& options) {
+    const Bounds bounds = modelBounds(source);
+    const PrimitiveRasterizer rasterizer(bounds.minimum, bounds.maximum, options.resolution,
+                                         options.views, options.supersampling);
+    const int threads = resolveThreadCount(options.threads);
+    const auto reference = renderReference(rasterizer, source, PlantPart::Leaf, true, threads);
+    const auto drawn = renderReference(rasterizer, candidate, PlantPart::Leaf, true, threads);
+    std::vector<double> mean;
+    for (int view = 0; view < rasterizer.viewCount(); ++view) {
+        const std::vector<double> levels =
+            multiScaleSquaredErrors(drawn[view], reference[view], rasterizer.resolution());
+        mean.resize(levels.size(), 0.0);
+        for (std::size_t k = 0; k < levels.size(); ++k) {
+            mean[k] += levels[k] / rasterizer.viewCount();
+        }
+    }
+    return multiScaleRmse(mean);
+}
+
+Status addBillboardClouds(const PlantModel& model, PlantLod& lod, const PlantLodOptions& options,
+                          const BillboardCloudOptions& billboardOptions) {
+    Result<BillboardCloud> cloud = BillboardCloudBuilder::build(model, billboardOptions);
+    if (!cloud) {
+        return Error{"plant '" + model.name + "': billboard clouds: " + cloud.error().message};
+    }
+    for (BillboardLevel& level : cloud->levels) {
+        const PlantModel levelModel = BillboardCloudBuilder::levelModel(level, model.name);
+        level.imageError = static_cast<float>(plantMeshImageError(model, levelModel, options));
+    }
+    lod.billboards = std::move(cloud.value());
+    return Status::success();
 }
 
 }  // namespace sylva

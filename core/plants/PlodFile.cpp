@@ -24,6 +24,8 @@ constexpr std::size_t kAlignment = 64;
 constexpr std::uint32_t kLevelStride = 32;
 constexpr std::uint32_t kEllipsoidStride = 112;
 constexpr std::uint32_t kLineStride = 64;
+constexpr std::uint32_t kBillboardLevelStride = 32;
+constexpr std::uint32_t kBillboardQuadStride = 96;
 
 class Writer {
 public:
@@ -42,6 +44,10 @@ public:
         f32(v.x);
         f32(v.y);
         f32(v.z);
+    }
+    void vec2(const glm::vec2& v) {
+        f32(v.x);
+        f32(v.y);
     }
     void pad(std::size_t alignment) {
         while (bytes.size() % alignment != 0) {
@@ -79,6 +85,10 @@ public:
     glm::vec3 vec3() {
         const float x = f32(), y = f32();
         return {x, y, f32()};
+    }
+    glm::vec2 vec2() {
+        const float x = f32();
+        return {x, f32()};
     }
 
 private:
@@ -174,6 +184,50 @@ std::vector<std::uint8_t> encodePlod(const PlantLod& lod) {
         w.u32(0);
     }
 
+    // Billboard clouds (optional): levels, quads, atlases (each atlas 64-byte aligned
+    // inside BBCA).
+    if (!lod.billboards.levels.empty()) {
+        sections.resize(7);
+        Section& levels = sections[4];
+        Section& quads = sections[5];
+        Section& atlases = sections[6];
+        std::memcpy(levels.tag, "BBCL", 4);
+        std::memcpy(quads.tag, "BBCQ", 4);
+        std::memcpy(atlases.tag, "BBCA", 4);
+        levels.stride = kBillboardLevelStride;
+        quads.stride = kBillboardQuadStride;
+        atlases.stride = 1;
+        std::uint32_t firstQuad = 0;
+        for (const BillboardLevel& level : lod.billboards.levels) {
+            atlases.data.pad(kAlignment);
+            Writer& w = levels.data;
+            w.f32(level.epsilon);
+            w.f32(level.imageError);
+            w.u32(firstQuad);
+            w.u32(static_cast<std::uint32_t>(level.quads.size()));
+            w.u32(static_cast<std::uint32_t>(level.atlas.width));
+            w.u32(static_cast<std::uint32_t>(level.atlas.height));
+            w.u64(atlases.data.bytes.size());
+            atlases.data.bytes.insert(atlases.data.bytes.end(), level.atlas.rgba.begin(),
+                                      level.atlas.rgba.end());
+            for (const BillboardQuad& q : level.quads) {
+                Writer& qw = quads.data;
+                for (const glm::vec3& c : q.corners) {
+                    qw.vec3(c);
+                }
+                for (const glm::vec2& uv : q.atlasUvs) {
+                    qw.vec2(uv);
+                }
+                qw.vec3(q.normal);
+                qw.u32((q.part == PlantPart::Branch ? 1u : 0u) | (q.cardboard ? 2u : 0u));
+            }
+            firstQuad += static_cast<std::uint32_t>(level.quads.size());
+        }
+        levels.count = static_cast<std::uint32_t>(lod.billboards.levels.size());
+        quads.count = firstQuad;
+        atlases.count = static_cast<std::uint32_t>(atlases.data.bytes.size());
+    }
+
     Writer out;
     out.bytes.insert(out.bytes.end(), kMagic, kMagic + 8);
     out.u32(kPlodVersion);
@@ -252,6 +306,9 @@ Result<PlantLod> decodePlod(std::span<const std::uint8_t> bytes, const std::stri
     const PlodSectionInfo* ellipsoid = nullptr;
     const PlodSectionInfo* line = nullptr;
     const PlodSectionInfo* nameSection = nullptr;
+    const PlodSectionInfo* billboardLevels = nullptr;
+    const PlodSectionInfo* billboardQuads = nullptr;
+    const PlodSectionInfo* billboardAtlases = nullptr;
     parsed.sections.reserve(sectionCount);
     for (std::uint32_t i = 0; i < sectionCount; ++i) {
         PlodSectionInfo s;
@@ -300,6 +357,15 @@ Result<PlantLod> decodePlod(std::span<const std::uint8_t> bytes, const std::stri
             status = expect(kLineStride);
         } else if (s.tag == "NAME") {
             nameSection = &s;
+            status = expect(1);
+        } else if (s.tag == "BBCL") {
+            billboardLevels = &s;
+            status = expect(kBillboardLevelStride);
+        } else if (s.tag == "BBCQ") {
+            billboardQuads = &s;
+            status = expect(kBillboardQuadStride);
+        } else if (s.tag == "BBCA") {
+            billboardAtlases = &s;
             status = expect(1);
         }
         if (!status) {
@@ -391,6 +457,64 @@ Result<PlantLod> decodePlod(std::span<const std::uint8_t> bytes, const std::stri
             return fail("line " + std::to_string(i) + " has a non-finite end point or radius");
         }
         lod.lines.push_back(l);
+    }
+    if (billboardLevels || billboardQuads || billboardAtlases) {
+        if (!billboardLevels || !billboardQuads || !billboardAtlases) {
+            return fail("billboard clouds need the sections 'BBCL', 'BBCQ' and 'BBCA' together");
+        }
+        std::vector<BillboardQuad> quads;
+        r = Reader(bytes, billboardQuads->offset);
+        for (std::uint32_t i = 0; i < billboardQuads->count; ++i) {
+            BillboardQuad q;
+            for (glm::vec3& c : q.corners) {
+                c = r.vec3();
+            }
+            for (glm::vec2& uv : q.atlasUvs) {
+                uv = r.vec2();
+            }
+            q.normal = r.vec3();
+            const std::uint32_t flags = r.u32();
+            q.part = (flags & 1u) != 0 ? PlantPart::Branch : PlantPart::Leaf;
+            q.cardboard = (flags & 2u) != 0;
+            if (!finite(q.corners[0]) || !finite(q.corners[1]) || !finite(q.corners[2]) ||
+                !finite(q.corners[3]) || !finite(q.normal)) {
+                return fail("billboard quad " + std::to_string(i) +
+                            " has a non-finite corner or normal");
+            }
+            quads.push_back(q);
+        }
+        r = Reader(bytes, billboardLevels->offset);
+        for (std::uint32_t i = 0; i < billboardLevels->count; ++i) {
+            BillboardLevel billboard;
+            billboard.epsilon = r.f32();
+            billboard.imageError = r.f32();
+            const std::uint64_t first = r.u32();
+            const std::uint64_t count = r.u32();
+            const std::uint32_t width = r.u32();
+            const std::uint32_t height = r.u32();
+            const std::uint64_t atlasOffset = r.u64();
+            const std::string label = "billboard level " + std::to_string(i);
+            if (first + count > quads.size()) {
+                return fail(label + " names quads [" + std::to_string(first) + ", " +
+                            std::to_string(first + count) + "), the file has " +
+                            std::to_string(quads.size()));
+            }
+            const std::uint64_t atlasBytes = std::uint64_t{width} * height * 4u;
+            if (width > 65536 || height > 65536 || atlasOffset > billboardAtlases->size ||
+                atlasBytes > billboardAtlases->size - atlasOffset) {
+                return fail(label + ": its " + std::to_string(width) + " x " +
+                            std::to_string(height) + " atlas at byte " +
+                            std::to_string(atlasOffset) + " runs past the section 'BBCA' (" +
+                            std::to_string(billboardAtlases->size) + " bytes)");
+            }
+            billboard.quads.assign(quads.begin() + static_cast<std::ptrdiff_t>(first),
+                                   quads.begin() + static_cast<std::ptrdiff_t>(first + count));
+            billboard.atlas.width = static_cast<int>(width);
+            billboard.atlas.height = static_cast<int>(height);
+            const std::uint8_t* atlas = bytes.data() + billboardAtlases->offset + atlasOffset;
+            billboard.atlas.rgba.assign(atlas, atlas + atlasBytes);
+            lod.billboards.levels.push_back(std::move(billboard));
+        }
     }
     if (info) {
         *info = std::move(parsed);

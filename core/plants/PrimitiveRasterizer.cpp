@@ -227,9 +227,34 @@ void PrimitiveRasterizer::drawLine(const LodLine& line, int view, RasterFrame& f
     const float value = luminance(line.color);
     const float r0 = line.startRadius * widthScale;
     const float r1 = line.endRadius * widthScale;
+    // Per row, only the columns near the part of the axis within reach of the row (the
+    // capsule lies within maxReach of its axis): a diagonal line covers a small part of
+    // its bounding rectangle. A pixel of margin on each side keeps rounding harmless, so
+    // the drawn pixels are exactly those of the full-rectangle loop.
+    const float maxReach = std::max({r0, r1, halfPixel});
     for (int y = rect.y0; y < rect.y1; ++y) {
         const float v = radius_ - (y + 0.5f) * pixel;
-        for (int x = rect.x0; x < rect.x1; ++x) {
+        float t0 = 0.0f, t1 = 1.0f;
+        if (std::abs(e.y) > 1e-12f) {
+            t0 = (v - maxReach - p.y) / e.y;
+            t1 = (v + maxReach - p.y) / e.y;
+            if (t0 > t1) {
+                std::swap(t0, t1);
+            }
+            t0 = std::max(t0, 0.0f);
+            t1 = std::min(t1, 1.0f);
+            if (t0 > t1) {
+                continue;
+            }
+        } else if (std::abs(p.y - v) > maxReach) {
+            continue;
+        }
+        const float xa = p.x + t0 * e.x, xb = p.x + t1 * e.x;
+        const float left = (std::min(xa, xb) - maxReach + radius_) / pixel - 0.5f;
+        const float right = (std::max(xa, xb) + maxReach + radius_) / pixel - 0.5f;
+        const int xBegin = std::max(rect.x0, static_cast<int>(std::floor(left)) - 1);
+        const int xEnd = std::min(rect.x1, static_cast<int>(std::ceil(right)) + 2);
+        for (int x = xBegin; x < xEnd; ++x) {
             const glm::vec2 w((x + 0.5f) * pixel - radius_ - p.x, v - p.y);
             const float t = ee > 0.0f ? std::clamp(glm::dot(w, e) / ee, 0.0f, 1.0f) : 0.0f;
             const glm::vec2 off = w - t * e;

@@ -98,6 +98,69 @@ TEST(PlodFile, RoundTripsBitExactly) {
     std::filesystem::remove(path);
 }
 
+PlantLod sampleLodWithBillboards() {
+    PlantLod lod = sampleLod();
+    for (int k = 0; k < 2; ++k) {
+        BillboardLevel level;
+        level.epsilon = 0.25f * (k + 1);
+        level.imageError = 0.004f + 0.001f * k;
+        level.atlas.width = 5 - k;
+        level.atlas.height = 3;
+        for (int i = 0; i < level.atlas.width * level.atlas.height * 4; ++i) {
+            level.atlas.rgba.push_back(static_cast<std::uint8_t>(37 * i + k));
+        }
+        for (int q = 0; q < 3 - k; ++q) {
+            BillboardQuad quad;
+            for (int c = 0; c < 4; ++c) {
+                quad.corners[c] = {0.1f * c, -0.0f, 1.0f / (q + 3)};
+                quad.atlasUvs[c] = {0.25f * c, 1.0f / 3.0f};
+            }
+            quad.normal = {0, 1, 0};
+            quad.part = q == 1 ? PlantPart::Branch : PlantPart::Leaf;
+            quad.cardboard = q == 2;
+            level.quads.push_back(quad);
+        }
+        lod.billboards.levels.push_back(level);
+    }
+    return lod;
+}
+
+TEST(PlodFile, BillboardCloudsRoundTripBitExactly) {
+    const PlantLod lod = sampleLodWithBillboards();
+    const std::vector<std::uint8_t> bytes = encodePlod(lod);
+    PlodFileInfo info;
+    Result<PlantLod> decoded = decodePlod(bytes, "memory.plod", &info);
+    ASSERT_TRUE(decoded.ok()) << decoded.error().message;
+    EXPECT_EQ(encodePlod(*decoded), bytes);
+    ASSERT_EQ(info.sections.size(), 7u);
+    EXPECT_EQ(info.sections[4].tag, "BBCL");
+    EXPECT_EQ(info.sections[5].tag, "BBCQ");
+    EXPECT_EQ(info.sections[6].tag, "BBCA");
+    ASSERT_EQ(decoded->billboards.levels.size(), 2u);
+    for (int k = 0; k < 2; ++k) {
+        const BillboardLevel& a = lod.billboards.levels[k];
+        const BillboardLevel& b = decoded->billboards.levels[k];
+        EXPECT_EQ(b.epsilon, a.epsilon);
+        EXPECT_EQ(b.imageError, a.imageError);
+        EXPECT_EQ(b.atlas.width, a.atlas.width);
+        EXPECT_EQ(b.atlas.rgba, a.atlas.rgba);
+        EXPECT_EQ(b.byteSize(), a.byteSize());
+        ASSERT_EQ(b.quads.size(), a.quads.size());
+        for (std::size_t q = 0; q < a.quads.size(); ++q) {
+            EXPECT_EQ(
+                std::memcmp(b.quads[q].corners, a.quads[q].corners, sizeof a.quads[q].corners), 0);
+            EXPECT_EQ(b.quads[q].part, a.quads[q].part);
+            EXPECT_EQ(b.quads[q].cardboard, a.quads[q].cardboard);
+        }
+    }
+    // 3 quads × 80 bytes + 5 × 3 × 4 atlas bytes.
+    EXPECT_EQ(lod.billboards.levels[0].byteSize(), 3u * 80u + 60u);
+    // A file without billboard sections (every file before them) reads with none.
+    Result<PlantLod> plain = decodePlod(encodePlod(sampleLod()), "plain.plod");
+    ASSERT_TRUE(plain.ok());
+    EXPECT_TRUE(plain->billboards.levels.empty());
+}
+
 // Re-seals a modified file so the checksum passes and the intended check fires.
 void reseal(std::vector<std::uint8_t>& bytes) {
     std::uint64_t hash = 0xcbf29ce484222325ull;
@@ -178,9 +241,23 @@ TEST(PlodFile, CorruptFilesGiveExactErrors) {
 
     // A missing required section (its tag renamed: unknown sections are skipped).
     bytes = good;
-    std::memcpy(&bytes[64 + 3 * 32], "BBCL", 4);
+    std::memcpy(&bytes[64 + 3 * 32], "XTRA", 4);
     reseal(bytes);
     EXPECT_EQ(decodeError(bytes), "tree.plod: missing section 'LINE'");
+
+    // A billboard level whose atlas runs past BBCA.
+    bytes = encodePlod(sampleLodWithBillboards());
+    const std::size_t bbcl = 64 + 4 * 32;
+    ASSERT_EQ(std::string(bytes.begin() + bbcl, bytes.begin() + bbcl + 4), "BBCL");
+    std::uint64_t bbclOffset = 0;
+    for (int i = 0; i < 8; ++i) {
+        bbclOffset |= static_cast<std::uint64_t>(bytes[bbcl + 8 + i]) << (8 * i);
+    }
+    bytes[bbclOffset + 32 + 20] = 40;  // level 1 atlas height: 3 → 40
+    reseal(bytes);
+    EXPECT_EQ(decodeError(bytes),
+              "tree.plod: billboard level 1: its 4 x 40 atlas at byte 64 runs past the section "
+              "'BBCA' (112 bytes)");
 
     // Missing file.
     Result<PlantLod> missing = readPlodFile("/nonexistent/tree.plod");

@@ -12,6 +12,7 @@
 // integrator stores BillboardCloud in .plod files.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,14 @@ struct BillboardLevel {
     // onto, −1 for degenerate triangles.
     std::vector<int> trianglePlane;
     PlantTexture atlas;  // RGBA8, sRGB colour, binary alpha (0 or 255)
+    // Multi-scale RMSE of the level against the source mesh, the metric of the ellipsoid
+    // levels (PlantLodLevel::imageError); 0 until measured (addBillboardClouds).
+    float imageError = 0.0f;
+    // GPU bytes: 4 vertices × (position f32[3] + atlas uv f32[2]) per quad + RGBA8 atlas.
+    std::uint64_t byteSize() const {
+        return static_cast<std::uint64_t>(quads.size()) * 4u * 20u +
+               static_cast<std::uint64_t>(atlas.width) * atlas.height * 4u;
+    }
 };
 
 struct BillboardCloud {

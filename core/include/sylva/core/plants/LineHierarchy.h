@@ -13,7 +13,10 @@
 // N_new with the lowest local estimate (the angle between the two lines times the
 // shorter length, Fig. 3.11), measure their image error and push them on a candidate
 // heap; pop the best, re-measure it if the measurement is older than the last merge,
-// apply it otherwise; prune the heap to N_cache. The measured error is the sum of
+// apply it otherwise; prune the heap to N_cache. A measurement is "older than the last
+// merge" only when that merge touched the candidate's lines or its screen footprint (the
+// squared-error change of a merge depends on nothing else), so most cached candidates
+// keep their exact measurement. The measured error is the sum of
 // squared differences of the line images against the original skeleton over all views,
 // updated incrementally: a merge re-renders only the screen rectangles its lines touch.
 #pragma once
@@ -86,6 +89,7 @@ struct LineHierarchyOptions {
     int cachedCandidates = 16;  // N_cache
     std::uint32_t seed = 1;
     float widthScale = 1.0f;  // calibrated line width scale
+    int threads = 1;          // candidate measurements in parallel (result independent of it)
 };
 
 struct LineHierarchyResult {

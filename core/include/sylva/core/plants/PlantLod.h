@@ -22,6 +22,8 @@
 
 #include <glm/glm.hpp>
 
+#include "sylva/core/plants/BillboardCloudBuilder.h"
+
 namespace sylva {
 
 // One ray-cast ellipsoid: centre + axes * radii (axes orthonormal, radii in metres,
@@ -74,6 +76,9 @@ struct PlantLod {
     std::vector<PlantLodLevel> levels;     // finest (imported leaves) first
     std::vector<LodEllipsoid> ellipsoids;  // coarse → fine (errorMaximum descending)
     std::vector<LodLine> lines;            // coarse → fine (errorMaximum descending)
+    // Billboard clouds of the same model (seed 003), for comparison; empty when not
+    // built. Levels read from a .plod have no trianglePlane map (it is not stored).
+    BillboardCloud billboards;
 };
 
 }  // namespace sylva

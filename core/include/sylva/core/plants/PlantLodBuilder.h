@@ -21,6 +21,7 @@
 #include <cstdint>
 
 #include "sylva/core/base/Result.h"
+#include "sylva/core/plants/BillboardCloudBuilder.h"
 #include "sylva/core/plants/LineHierarchy.h"
 #include "sylva/core/plants/PlantLod.h"
 #include "sylva/core/plants/PlantLodProgress.h"
@@ -48,5 +49,17 @@ Result<PlantLod> buildPlantLod(const PlantModel& model, const PlantLodOptions& o
 // pixel) against the full source mesh, over the builder's standard views.
 double plantLodImageError(const PlantModel& model, const PlantLod& lod, float error,
                           const PlantLodOptions& options);
+
+// Builds the billboard clouds of `model` (BillboardCloudBuilder, seed 003) into
+// lod.billboards and measures each level's multi-scale RMSE against the source mesh with
+// the views and resolution of `options`, the metric of the ellipsoid levels. Fails like
+// BillboardCloudBuilder::build (the message names the plant); lod is unchanged then.
+Status addBillboardClouds(const PlantModel& model, PlantLod& lod, const PlantLodOptions& options,
+                          const BillboardCloudOptions& billboardOptions = {});
+
+// Multi-scale RMSE of `candidate` (any mesh, e.g. a billboard level's model) against the
+// full source model, over the builder's standard views.
+double plantMeshImageError(const PlantModel& source, const PlantModel& candidate,
+                           const PlantLodOptions& options);
 
 }  // namespace sylva
