@@ -234,6 +234,9 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(const ShaderLibrary& li
     if (!lod) {
         return lod.error();
     }
+    if (Status billboards = addBillboardClouds(model.value(), lod.value(), PlantLodOptions{}); !billboards) {
+        return billboards.error();
+    }
     auto asset = std::make_shared<PlantAsset>();
     asset->name = "oak";
     asset->model = std::move(model.value());

@@ -148,11 +148,9 @@ std::vector<std::unique_ptr<VegetationMesh>> uploadModel(const PlantModel& model
     return meshes;
 }
 
-// The billboard-cloud levels an asset carries (finest first).
+// The billboard-cloud levels an asset carries (finest first; empty when not built).
 const std::vector<BillboardLevel>& billboardLevels(const PlantAsset& asset) {
-    (void)asset;
-    static const std::vector<BillboardLevel> none;
-    return none;
+    return asset.lod.billboards.levels;
 }
 
 }  // namespace
