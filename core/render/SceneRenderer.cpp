@@ -7,6 +7,8 @@
 #include <cmath>
 #include <string>
 
+#include "sylva/core/sources/PlantModelSource.h"
+#include "sylva/core/sources/PlantsSource.h"
 #include "sylva/core/terrain/ElevationQuery.h"
 
 namespace sylva::render {
@@ -118,9 +120,35 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     const auto vegetationStart = std::chrono::steady_clock::now();
     statistics_.terrainPassSeconds = std::chrono::duration<double>(vegetationStart - terrainStart).count();
     statistics_.vegetation = {};
+    statistics_.vegetationStream = {};
     statistics_.vegetationPassSeconds = 0;
-    if (!settings.instanceBatches.empty()) {
-        vegetation_->draw(settings.instanceBatches, camera, projection, near, settings.width, settings.height,
+    std::vector<const InstanceBatch*> batches = settings.instanceBatches;
+    if (!layers.plants.empty()) {
+        Result<std::vector<VegetationStreamLayer>> streamLayers = vegetationLayers(layers);
+        if (!streamLayers) {
+            Framebuffer::unbind();
+            glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+            return streamLayers.error();
+        }
+        VegetationStreamSettings stream;
+        stream.pixelAngle = 2.0 * std::tan(camera.verticalFov / 2) / settings.height;
+        stream.minimumPixels = settings.vegetation.minimumPixels;
+        stream.maximumDistance = settings.vegetation.maximumDistance;
+        stream.heightAboveGround = aboveTerrain;
+        stream.wait = settings.waitForTiles;
+        Result<std::vector<const InstanceBatch*>> streamed =
+            vegetationStream_.update(streamLayers.value(), provider, camera, vegetation_->speciesLods(), stream);
+        if (!streamed) {
+            Framebuffer::unbind();
+            glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+            return streamed.error();
+        }
+        batches.insert(batches.end(), streamed.value().begin(), streamed.value().end());
+        statistics_.vegetationStream = vegetationStream_.statistics();
+        gbuffer_.bind();  // producing tiles may have touched GL state of no one, but be sure
+    }
+    if (!batches.empty()) {
+        vegetation_->draw(batches, camera, projection, near, settings.width, settings.height,
                           settings.vegetation);
         glFinish();  // only to time the pass
         statistics_.vegetation = vegetation_->statistics();
@@ -141,6 +169,34 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     statistics_.terrain = terrain_->statistics();
     statistics_.gpuSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return image;
+}
+
+Result<std::vector<VegetationStreamLayer>> SceneRenderer::vegetationLayers(const TerrainLayers& layers) {
+    std::vector<VegetationStreamLayer> out;
+    for (const PlantsSource* plants : layers.plants) {
+        VegetationStreamLayer layer;
+        layer.source = plants;
+        const std::vector<const PlantModelSource*>& models = plants->models();
+        for (std::size_t i = 0; i < plants->speciesNames().size(); ++i) {
+            const PlantModelSource* model = i < models.size() ? models[i] : nullptr;
+            if (model == nullptr) {
+                layer.species.push_back(-1);
+                continue;
+            }
+            auto found = speciesOfModel_.find(model->contentHash());
+            if (found == speciesOfModel_.end()) {
+                Result<std::shared_ptr<const PlantAsset>> asset = model->asset();
+                if (!asset) {
+                    return asset.error();
+                }
+                const std::uint32_t index = vegetation_->addSpecies(asset.value());
+                found = speciesOfModel_.emplace(model->contentHash(), index).first;
+            }
+            layer.species.push_back(int(found->second));
+        }
+        out.push_back(std::move(layer));
+    }
+    return out;
 }
 
 }  // namespace sylva::render

@@ -10,6 +10,7 @@
 #include "sylva/core/base/Hash.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/sources/CoverageRasterizer.h"
+#include "sylva/core/sources/InstanceTileCodec.h"
 
 namespace sylva {
 namespace {
@@ -207,9 +208,15 @@ const PlantsSource* PlantsSource::from(const Source* source) {
     return dynamic_cast<const PlantsSource*>(source);
 }
 
-Result<TilePointer> PlantsSource::produce(const TileKey& key, TileProvider&) const {
-    return Error{"source '" + name() + "' gives plant instances, which have no raster tile (" +
-                 key.toString() + "); draw them with rasterize"};
+Result<TilePointer> PlantsSource::produce(const TileKey& key, TileProvider& provider) const {
+    Window window;
+    window.bounds = {key.west(), key.south(), key.east(), key.north()};
+    window.owner = key;
+    Result<std::vector<PlantInstance>> made = generate(key, window, provider);
+    if (!made) {
+        return made.error();
+    }
+    return TilePointer(std::make_shared<ImageTile>(InstanceTileCodec::encode(key, made.value())));
 }
 
 int PlantsSource::minimumLevel() const {
@@ -519,17 +526,19 @@ Result<std::vector<PlantInstance>> PlantsSource::generate(const TileKey& key, co
 
 Result<std::shared_ptr<const InstanceTile>> PlantsSource::instances(const TileKey& key,
                                                                     TileProvider& provider) const {
-    Window window;
-    window.bounds = {key.west(), key.south(), key.east(), key.north()};
-    window.owner = key;
-    Result<std::vector<PlantInstance>> made = generate(key, window, provider);
-    if (!made) {
-        return made.error();
+    // Through the provider: cached, shared and deduplicated like any tile.
+    Result<TilePointer> encoded = provider.tile(*this, key);
+    if (!encoded) {
+        return encoded.error();
+    }
+    Result<std::vector<PlantInstance>> decoded = InstanceTileCodec::decode(*encoded.value());
+    if (!decoded) {
+        return decoded.error();
     }
     auto tile = std::make_shared<InstanceTile>();
     tile->key = key;
     tile->species = speciesNames_;
-    tile->instances = std::move(made.value());
+    tile->instances = std::move(decoded.value());
     return std::shared_ptr<const InstanceTile>(std::move(tile));
 }
 

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "sylva/core/scene/BlockReader.h"
+#include "sylva/core/sources/PlantsSource.h"
 #include "sylva/core/sources/NormalMapSource.h"
 #include "sylva/core/sources/RasterSource.h"
 #include "sylva/core/sources/SourceFactory.h"
@@ -138,10 +139,16 @@ Result<TerrainLayers> SourceGraph::terrainLayers(const ProjectModel& model, std:
             case PortType::Elevation: slot = &layers.elevation; break;
             case PortType::Image: slot = &layers.color; break;
             case PortType::Normals: slot = &layers.normals; break;
+            case PortType::Instances:
+                if (const PlantsSource* plants = PlantsSource::from(source)) {
+                    layers.plants.push_back(plants);
+                    continue;
+                }
+                [[fallthrough]];
             default:
                 return Error{reader.where("layers") + "source '" + name + "' gives " +
                              portTypeName(source->output()) +
-                             ", which the terrain cannot draw yet (elevation, image or normals)"};
+                             ", which a scenario cannot draw (elevation, image, normals or plants)"};
         }
         if (*slot != nullptr) {
             return Error{reader.where("layers") + "two " + portTypeName(source->output()) +

@@ -2,10 +2,11 @@
 // species, scale, rotation, tint) from point features and/or scattered over a
 // density mask or polygons.
 //
-// Access path. Instances do not go through the image-tile caches: produce() fails.
-// Consumers (rasterize, later the vegetation renderer) cast their input with
-// PlantsSource::from() and call instances(key, provider), which uses the provider
-// only for the raster inputs (elevation, density). Every call is a pure function of
+// Access path. produce() gives the instances of a tile encoded in an ImageTile
+// (InstanceTileCodec), so instance tiles go through the same TileProvider (Scheduler,
+// caches, budget) as raster tiles. Consumers (rasterize, the vegetation renderer) cast
+// their input with PlantsSource::from() and call instances(key, provider), which gets
+// that tile from the provider and decodes it. Every produce() is a pure function of
 // the key, the inputs and the parameters: the same project gives the same instances
 // whatever the worker count or request order.
 //
@@ -74,7 +75,7 @@ public:
                                                       PlantsParameters parameters);
     static Result<std::unique_ptr<Source>> create(const SourceBuildContext& context);
 
-    // Always an error: instances are not raster tiles.
+    // The instances of `key`, encoded (InstanceTileCodec). Fails like instances().
     Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override;
 
     // The instances that belong to `key`. Fails when an input fails, a point's species

@@ -8,12 +8,14 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "sylva/core/base/Result.h"
+#include "sylva/core/plants/VegetationStream.h"
 #include "sylva/core/scene/Camera.h"
 #include "sylva/core/sources/SourceGraph.h"
 #include "sylva/render/Framebuffer.h"
@@ -53,6 +55,7 @@ struct RenderStatistics {
     double terrainPassSeconds = 0;  // the terrain's G-buffer pass alone (to glFinish)
     double vegetationPassSeconds = 0;  // selection, upload and the plants' G-buffer pass
     VegetationStatistics vegetation;
+    VegetationStreamStatistics vegetationStream;
 };
 
 class SceneRenderer {
@@ -79,9 +82,14 @@ public:
 private:
     SceneRenderer() = default;
     Status ensureTargets(int width, int height);
+    // The stream layers of the scenario's plants sources; registers each species'
+    // asset with the vegetation renderer on first use (building it may take seconds).
+    Result<std::vector<VegetationStreamLayer>> vegetationLayers(const TerrainLayers& layers);
 
     std::unique_ptr<TerrainRenderer> terrain_;
     std::unique_ptr<VegetationRenderer> vegetation_;
+    VegetationStream vegetationStream_;
+    std::map<std::uint64_t, std::uint32_t> speciesOfModel_;  // model content hash -> species
     std::unique_ptr<ShadingPass> shading_;
     Framebuffer gbuffer_;
     Framebuffer output_;
