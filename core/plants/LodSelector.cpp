@@ -107,6 +107,19 @@ InstanceBatch LodSelector::makeBatch(const glm::dvec3& origin,
         instance.hash = h ^ (h >> 15);
         batch.instances.push_back(instance);
     }
+    if (!batch.instances.empty()) {
+        glm::vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
+        for (const InstanceBatch::Instance& instance : batch.instances) {
+            low = glm::min(low, instance.center);
+            high = glm::max(high, instance.center);
+        }
+        batch.boundsCenter = 0.5f * (low + high);
+        for (const InstanceBatch::Instance& instance : batch.instances) {
+            batch.boundsRadius = std::max(batch.boundsRadius, glm::distance(batch.boundsCenter, instance.center) +
+                                                                  instance.radius);
+            batch.largestInstanceRadius = std::max(batch.largestInstanceRadius, instance.radius);
+        }
+    }
     return batch;
 }
 
@@ -132,7 +145,7 @@ struct Decision {
 
 }  // namespace
 
-void LodSelector::select(const std::vector<const InstanceBatch*>& batches,
+void LodSelector::select(const std::vector<const InstanceBatch*>& allBatches,
                          const std::vector<SpeciesLod>& species, const Camera& camera,
                          const LodSelectionSettings& settings, LodSelection& out) {
     out.instances.clear();
@@ -155,6 +168,26 @@ void LodSelector::select(const std::vector<const InstanceBatch*>& batches,
     const float halfBand = float(0.5 * settings.transitionBand);
     const float fadeUp = std::exp(halfBand), fadeDown = std::exp(-halfBand);
 
+    // Per batch (tile): drop those whose bounding sphere is outside the frustum or too
+    // far for any of its plants to cover minimumPixels.
+    std::vector<const InstanceBatch*> batches;
+    std::size_t considered = 0;
+    for (const InstanceBatch* batch : allBatches) {
+        considered += batch->instances.size();
+        const glm::vec3 center(rotation * (batch->origin - camera.position + glm::dvec3(batch->boundsCenter)));
+        const float r = batch->boundsRadius;
+        bool inside = center.z <= r - float(settings.near);
+        for (int p = 0; p < 4 && inside; ++p) {
+            inside = glm::dot(settings.sidePlanes[p], center) >= -r;
+        }
+        const float nearest = std::max(glm::length(center) - r, 0.0f);
+        const bool large = 2.0f * batch->largestInstanceRadius >= float(settings.minimumPixels * nearest * errorPerMetre);
+        const bool withinDistance = settings.maximumDistance <= 0.0 || nearest <= settings.maximumDistance;
+        if (inside && large && withinDistance && !batch->instances.empty()) {
+            batches.push_back(batch);
+        }
+    }
+
     // Pass 1 (parallel over chunks of batches): cull, error, run keys.
     std::size_t total = 0;
     std::vector<std::size_t> batchStart(batches.size() + 1, 0);
@@ -163,7 +196,7 @@ void LodSelector::select(const std::vector<const InstanceBatch*>& batches,
         total += batches[b]->instances.size();
     }
     batchStart[batches.size()] = total;
-    out.consideredInstances = total;
+    out.consideredInstances = considered;
 
     const int chunks = std::max(1, std::min<int>(int(std::thread::hardware_concurrency()) * 4,
                                                  int(total / 4096) + 1));

@@ -116,6 +116,24 @@ TEST_F(LodSelectorScene, CullsBehindOutsideAndTooSmall) {
     EXPECT_EQ(out.visibleInstances, 2u);
 }
 
+TEST_F(LodSelectorScene, WholeBatchesAreCulledByTheirBounds) {
+    std::vector<InstancePlacement> behind, ahead;
+    for (int i = 0; i < 100; ++i) {
+        behind.push_back(at(-40 - i % 10 * 5, i / 10 * 5));
+        ahead.push_back(at(40 + i % 10 * 5, i / 10 * 5 - 20));
+    }
+    const InstanceBatch back = LodSelector::makeBatch(behind[0].baseEcef, behind, lods_);
+    const InstanceBatch front = LodSelector::makeBatch(ahead[0].baseEcef, ahead, lods_);
+    EXPECT_GT(back.boundsRadius, 30.0f);
+    LodSelection out;
+    LodSelector::select({&back, &front}, lods_, camera_, settings_, out);
+    EXPECT_EQ(out.consideredInstances, 200u);
+    EXPECT_EQ(out.visibleInstances, 100u);
+    settings_.maximumDistance = 20.0;
+    LodSelector::select({&back, &front}, lods_, camera_, settings_, out);
+    EXPECT_EQ(out.visibleInstances, 0u);
+}
+
 TEST_F(LodSelectorScene, RunsFollowTheErrorAndTheMeshHandover) {
     // The error grows with distance: 0.08 m/px (the mesh error) lies at ~100 m.
     const double meshDistance = lods_[0].meshError / settings_.pixelAngle;

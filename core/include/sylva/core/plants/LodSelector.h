@@ -49,6 +49,10 @@ struct InstanceBatch {
         std::uint32_t hash = 0;  // decorrelates the dither patterns of neighbours
     };
     std::vector<Instance> instances;
+    // Bounding sphere of all instances' spheres, relative to origin (per-tile culling).
+    glm::vec3 boundsCenter{0.0f};
+    float boundsRadius = 0.0f;
+    float largestInstanceRadius = 0.0f;
 };
 
 // One instance placed on the globe: `up` is the ellipsoid normal at its base, heading
