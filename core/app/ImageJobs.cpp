@@ -39,6 +39,12 @@ Result<RenderSetup> makeRenderSetup(const ProjectModel& model, int overrideWidth
     settings.ocean = renderBlock.boolean("ocean", true);
     settings.exposure = renderBlock.optionalNumber("exposure").value_or(1.0);
     setup.terrain.maxLevel = static_cast<int>(renderBlock.optionalNumber("max_level").value_or(24));
+    const std::string vegetation = renderBlock.string("vegetation", "lod");
+    settings.vegetation.method = vegetation == "mesh"         ? VegetationMethod::Mesh
+                                 : vegetation == "billboards" ? VegetationMethod::Billboard
+                                                              : VegetationMethod::Lod;
+    settings.vegetation.quality = renderBlock.optionalNumber("vegetation_quality").value_or(1.0);
+    settings.vegetation.maximumDistance = renderBlock.optionalNumber("vegetation_distance").value_or(6000.0);
     return setup;
 }
 

@@ -259,7 +259,17 @@ SchemaRegistry makeBuiltin() {
               number("exposure", Dimension::None, 1.0, 0.01, 100.0,
                      "Scale applied to radiance before tone mapping."),
               number("max_level", Dimension::None, 24, 4, 28,
-                     "Finest clipmap level drawn.")}});
+                     "Finest clipmap level drawn."),
+              wordChoice("vegetation", {"lod", "billboards", "mesh"}, "lod",
+                         "How plants are drawn: ray-cast ellipsoid/line levels of detail with the source "
+                         "mesh for close-ups, billboard clouds (from .plod files built with them), or the "
+                         "source mesh everywhere (slow; a reference)."),
+              number("vegetation_quality", Dimension::None, 1.0, 0.1, 10.0,
+                     "Divides the error a plant's level of detail may show (metres per pixel): 2 draws "
+                     "finer levels, 0.5 coarser ones."),
+              number("vegetation_distance", Dimension::Length, 6000.0, 10.0, 1.0e6,
+                     "Plants farther than this are left to the terrain's colour; nearer ones are drawn "
+                     "while they cover at least 1.5 pixels.")}});
     }
     addLanguageSchema(registry);
     return registry;
