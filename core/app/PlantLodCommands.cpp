@@ -5,21 +5,26 @@
 // glTF/OBJ file through PlantImporter, or `--synthetic LEAVES` (tests).
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <functional>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "CommandLine.h"
 #include "Commands.h"
 #include "ProjectSession.h"
+#include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/plants/PlantGenerator.h"
 #include "sylva/core/plants/PlantImporter.h"
 #include "sylva/core/plants/PlantLodBuilder.h"
 #include "sylva/core/plants/PlodFile.h"
+#include "sylva/core/plants/PrimitiveRasterizer.h"
 #include "sylva/core/plants/SyntheticPlant.h"
 
 namespace sylva::app {
@@ -124,6 +129,82 @@ std::string formatError(float e) {
     char text[32];
     std::snprintf(text, sizeof text, "%.4g", e);
     return text;
+}
+
+// GPU bytes of what a renderer draws at an ellipsoid level: the level's ellipsoids and
+// the lines drawn at its error, in the .plod element sizes (uploaded as they are).
+std::uint64_t levelBytes(const PlantLodLevel& level) {
+    return std::uint64_t{level.ellipsoidCount} * 112u + std::uint64_t{level.lineCount} * 64u;
+}
+
+// The equal-memory budget of seed 001 Fig. 3.19: 19 kB (19 × 1024 bytes).
+constexpr std::uint64_t kComparisonBytes = 19u * 1024u;
+
+// Luminance [0, 1] → grey sRGB-ish byte (square root: dark foliage stays visible).
+std::uint8_t greyByte(float value) {
+    return static_cast<std::uint8_t>(
+        std::lround(255.0f * std::sqrt(std::clamp(value, 0.0f, 1.0f))));
+}
+
+// One montage row: the source mesh, every ellipsoid/line level, every billboard level,
+// each seen from the builder's first view (PrimitiveRasterizer, luminance as grey) —
+// exactly the images the error metric compares.
+std::vector<std::vector<float>> montageRow(const PlantModel& model, const PlantLod& lod, int size,
+                                           int& cells) {
+    const PrimitiveRasterizer rasterizer(lod.boundsMinimum, lod.boundsMaximum, size, 8, 2);
+    std::vector<std::vector<float>> images;
+    RasterFrame frame = rasterizer.blankFrame();
+    rasterizer.drawMesh(model, PlantPart::Leaf, true, 0, frame);
+    images.push_back(rasterizer.resolve(frame));
+    for (std::size_t k = 0; k < lod.levels.size(); ++k) {
+        std::vector<LodEllipsoid> ellipsoids;
+        for (const LodEllipsoid& e : lod.ellipsoids) {
+            if (e.level == k) {
+                ellipsoids.push_back(e);
+            }
+        }
+        std::vector<LodLine> lines;
+        const float error = lod.levels[k].errorMinimum;
+        for (const LodLine& l : lod.lines) {
+            if (l.errorMinimum <= error && error < l.errorMaximum) {
+                lines.push_back(l);
+            }
+        }
+        rasterizer.clearFrame(frame);
+        rasterizer.drawEllipsoids(ellipsoids, 0, frame);
+        rasterizer.drawLines(lines, 0, frame);
+        images.push_back(rasterizer.resolve(frame));
+    }
+    for (const BillboardLevel& level : lod.billboards.levels) {
+        rasterizer.clearFrame(frame);
+        rasterizer.drawMesh(BillboardCloudBuilder::levelModel(level, model.name), PlantPart::Leaf,
+                            true, 0, frame);
+        images.push_back(rasterizer.resolve(frame));
+    }
+    cells = std::max(cells, static_cast<int>(images.size()));
+    return images;
+}
+
+Status writeMontage(const std::string& path,
+                    const std::vector<std::vector<std::vector<float>>>& rows, int size, int cells) {
+    const int width = size * cells, height = size * static_cast<int>(rows.size());
+    std::vector<std::uint8_t> rgba(static_cast<std::size_t>(width) * height * 4, 255);
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+        for (std::size_t c = 0; c < rows[r].size(); ++c) {
+            for (int y = 0; y < size; ++y) {
+                for (int x = 0; x < size; ++x) {
+                    // Background (0) white, the plant dark on it; a grey border per cell.
+                    const float v = rows[r][c][static_cast<std::size_t>(y) * size + x];
+                    const bool border = x == 0 || y == 0;
+                    const std::uint8_t g = border ? 160 : v > 0.0f ? greyByte(v) : 255;
+                    const std::size_t at =
+                        (static_cast<std::size_t>(r * size + y) * width + c * size + x) * 4;
+                    rgba[at] = rgba[at + 1] = rgba[at + 2] = g;
+                }
+            }
+        }
+    }
+    return ImageWriter::writeRgba8(path, width, height, rgba);
 }
 
 }  // namespace
@@ -269,13 +350,20 @@ int runPlantInfo(const std::vector<std::string>& arguments) {
 }
 
 int runPlantLodBench(const std::vector<std::string>& arguments) {
-    const ParsedCommandLine command =
-        parseCommandLine(arguments, {{"json", false}, {"threads"}, {"leaves"}, {"help", false}});
+    const ParsedCommandLine command = parseCommandLine(arguments, {{"json", false},
+                                                                   {"threads"},
+                                                                   {"leaves"},
+                                                                   {"montage"},
+                                                                   {"no-billboards", false},
+                                                                   {"help", false}});
     if (command.has("help")) {
         std::puts(
             "usage: sylva bench plantlod [--json] [--threads N] [--leaves 1000,5000,10000,27000]\n"
+            "                            [--no-billboards] [--montage IMAGE.png]\n"
             "builds the LoD of plants with the given leaf counts and compares with seed 001 Table "
-            "3.1");
+            "3.1;\nbillboard clouds of the same models for the equal-memory comparison (Fig. "
+            "3.19);\n--montage writes every level beside the source, one row per model and per "
+            "preset");
         return 0;
     }
     if (!command.error.empty() || !command.positional.empty()) {
@@ -341,6 +429,15 @@ int runPlantLodBench(const std::vector<std::string>& arguments) {
 
     std::vector<std::pair<std::string, double>> metrics;
     double speedup = std::numeric_limits<double>::infinity();
+    const bool billboards = !command.has("no-billboards");
+    const std::optional<std::string> montagePath = command.get("montage");
+    constexpr int kMontageSize = 160;
+    std::vector<std::vector<std::vector<float>>> montageRows;
+    int montageCells = 0;
+    // Equal memory: the lowest error of any LoD level / billboard level of any model
+    // within the budget.
+    double rmseLodBudget = std::numeric_limits<double>::infinity();
+    double rmseBillboardBudget = std::numeric_limits<double>::infinity();
     for (const Model& m : models) {
         const PlantModel model = makeModel(m.leaves);
         const auto start = std::chrono::steady_clock::now();
@@ -366,12 +463,90 @@ int runPlantLodBench(const std::vector<std::string>& arguments) {
             metrics.emplace_back("ellipsoids" + suffix, lod->levels[k].ellipsoidCount);
             metrics.emplace_back("lines" + suffix, lod->levels[k].lineCount);
             metrics.emplace_back("rmse" + suffix, lod->levels[k].imageError);
+            metrics.emplace_back("bytes" + suffix, static_cast<double>(levelBytes(lod->levels[k])));
+            if (levelBytes(lod->levels[k]) <= kComparisonBytes) {
+                rmseLodBudget = std::min(rmseLodBudget, double(lod->levels[k].imageError));
+            }
+        }
+        if (billboards) {
+            // Billboard clouds at the default texel density (reported per level) and at
+            // coarser densities, whose smaller atlases reach the equal-memory budget.
+            for (const int texels : {256, 128, 64, 32, 16}) {
+                BillboardCloudOptions cloudOptions;
+                cloudOptions.texelsAcrossModel = texels;
+                PlantLod withClouds;
+                withClouds.boundsMinimum = lod->boundsMinimum;
+                withClouds.boundsMaximum = lod->boundsMaximum;
+                if (Status built = addBillboardClouds(model, withClouds, options, cloudOptions);
+                    !built) {
+                    reportError(built.error().message);
+                    return 1;
+                }
+                for (std::size_t k = 0; k < withClouds.billboards.levels.size(); ++k) {
+                    const BillboardLevel& level = withClouds.billboards.levels[k];
+                    if (texels == 256) {
+                        const std::string suffix = "_l" + std::to_string(k) + "_" + m.label;
+                        metrics.emplace_back("bbc_planes" + suffix, level.quads.size());
+                        metrics.emplace_back("bbc_rmse" + suffix, level.imageError);
+                        metrics.emplace_back("bbc_bytes" + suffix,
+                                             static_cast<double>(level.byteSize()));
+                    }
+                    if (level.byteSize() <= kComparisonBytes) {
+                        rmseBillboardBudget =
+                            std::min(rmseBillboardBudget, double(level.imageError));
+                    }
+                }
+                if (texels == 256) {
+                    lod->billboards = withClouds.billboards;
+                }
+            }
+        }
+        if (montagePath) {
+            montageRows.push_back(montageRow(model, *lod, kMontageSize, montageCells));
         }
         if (!command.has("json")) {
             std::fprintf(stderr, "plantlod: %s leaves in %.1f s\n", m.label, seconds);
         }
     }
     metrics.emplace_back("speedup_vs_thesis_min", speedup);
+    if (billboards) {
+        metrics.emplace_back("rmse_lod_19kb", rmseLodBudget);
+        metrics.emplace_back("rmse_bbc_19kb", rmseBillboardBudget);
+    }
+    if (montagePath) {
+        // Every other preset at 1,000 leaves, for a look at each kind of plant.
+        for (const std::string& preset : PlantGenerator::presetNames()) {
+            if (preset == "oak") {
+                continue;
+            }
+            PlantGeneratorOptions generatorOptions;
+            generatorOptions.seed = 7;
+            generatorOptions.leafCount = 1000;
+            Result<PlantModel> model =
+                PlantGenerator::generate(PlantGenerator::preset(preset).value(), generatorOptions);
+            if (!model) {
+                reportError(model.error().message);
+                return 1;
+            }
+            Result<PlantLod> lod = buildPlantLod(*model, options);
+            if (!lod) {
+                reportError(lod.error().message);
+                return 1;
+            }
+            if (billboards) {
+                if (Status built = addBillboardClouds(*model, *lod, options); !built) {
+                    reportError(built.error().message);
+                    return 1;
+                }
+            }
+            montageRows.push_back(montageRow(*model, *lod, kMontageSize, montageCells));
+        }
+        if (Status written = writeMontage(*montagePath, montageRows, kMontageSize, montageCells);
+            !written) {
+            reportError(written.error().message);
+            return 1;
+        }
+    }
     if (command.has("json")) {
         std::string out = "{\"suite\":\"plantlod\",\"metrics\":{";
         for (std::size_t i = 0; i < metrics.size(); ++i) {

@@ -32,7 +32,7 @@ void printUsage(std::FILE* stream) {
         "  doc [KIND] [--markdown] [--update FILE]\n"
         "                 the language reference from the schema registry\n"
         "  plant generate --preset NAME --seed N [--leaves N] -o MODEL.gltf|.glb\n"
-        "                 a procedural tree (oak, conifer, birch, bush) as glTF\n"
+        "                 a procedural tree (oak, conifer, birch, bush, palm) as glTF\n"
         "  plant montage [--seed N] [--leaves N] [--size WxH] [--billboards] -o IMAGE.png\n"
         "                 the presets side by side (software rasterizer)\n"
         "  plant build (IN | --synthetic LEAVES) -o OUT.plod [--threads N]\n"

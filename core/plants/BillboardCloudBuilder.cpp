@@ -666,17 +666,23 @@ Result<BillboardCloud> BillboardCloudBuilder::build(const PlantModel& model,
             quad.cardboard = plane.cardboard;
             level.quads.push_back(quad);
         }
-        // Shelf packing, tallest tiles first, into an atlas 1024 texels wide (or wider
-        // for a wider tile).
+        // Shelf packing, tallest tiles first, into an atlas about as wide as the square
+        // root of the tiles' area (so coarse texel densities give small atlases), at most
+        // 1024 texels unless one tile is wider.
         std::vector<std::size_t> order(tiles.size());
         std::iota(order.begin(), order.end(), std::size_t(0));
         std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
             return tiles[a].height > tiles[b].height;
         });
-        int atlasWidth = 1024;
+        double tileArea = 0.0;
+        int widestTile = 4;
         for (const Tile& tile : tiles) {
-            atlasWidth = std::max(atlasWidth, tile.width);
+            tileArea += double(tile.width) * double(tile.height);
+            widestTile = std::max(widestTile, tile.width);
         }
+        int atlasWidth =
+            std::min(1024, (static_cast<int>(std::ceil(1.15 * std::sqrt(tileArea))) + 3) / 4 * 4);
+        atlasWidth = std::max(atlasWidth, widestTile);
         int x = 0, y = 0, shelf = 0;
         for (std::size_t i : order) {
             if (x + tiles[i].width > atlasWidth) {

@@ -458,7 +458,7 @@ std::uint8_t toSrgb8(float linear) {
 }  // namespace
 
 std::vector<std::string> PlantGenerator::presetNames() {
-    return {"oak", "conifer", "birch", "bush"};
+    return {"oak", "conifer", "birch", "bush", "palm"};
 }
 
 Result<TreeParameters> PlantGenerator::preset(const std::string& name) {
@@ -564,6 +564,29 @@ Result<TreeParameters> PlantGenerator::preset(const std::string& name) {
         tree.barkColor = {0.12f, 0.09f, 0.06f};
         tree.leafColor = {0.06f, 0.18f, 0.03f};
         tree.attractionUp = 0.3f;
+    } else if (name == "palm") {
+        // A coconut-like palm: one slender, slightly bent trunk without branches and a
+        // crown of drooping fronds at its top, leaflets alternating along each frond.
+        tree.shape = TreeShape::Cylindrical;
+        tree.baseSize = 0.9f;
+        tree.scale = 9.0f;
+        tree.scaleVariation = 1.0f;
+        tree.ratio = 0.025f;
+        tree.ratioPower = 2.0f;
+        tree.flare = 0.4f;
+        tree.levels = {
+            {1.0f, 0.0f, 0.3f, 10, degrees(15.0f), 0.0f, degrees(6.0f), 0.0f, 0.0f, 0.0f, 0, 0, 0,
+             0, 0, 8},
+            {0.4f, 0.05f, 1.0f, 6, degrees(110.0f), 0.0f, degrees(10.0f), 0.0f, 0.0f, 0.0f, 22,
+             degrees(70.0f), degrees(20.0f), degrees(137.5f), degrees(10.0f), 4},
+        };
+        tree.leaves = 40;
+        tree.leafScale = 0.55f;
+        tree.leafScaleX = 0.14f;
+        tree.leafDownAngle = degrees(65.0f);
+        tree.leafRotate = degrees(-90.0f);
+        tree.barkColor = {0.22f, 0.17f, 0.12f};
+        tree.leafColor = {0.07f, 0.2f, 0.03f};
     } else {
         std::string names;
         for (const std::string& known : presetNames()) {

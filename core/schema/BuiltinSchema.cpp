@@ -5,6 +5,8 @@
 
 #include <numbers>
 
+#include "sylva/core/plants/PlantGenerator.h"
+
 namespace sylva {
 namespace {
 
@@ -517,8 +519,39 @@ void addVectorSourceKinds(SchemaRegistry& registry) {
                      "Points: attribute with the rotation in degrees clockwise from north; random otherwise."),
               number("tint_variation", Dimension::Ratio, 0.1, 0.0, 1.0,
                      "Tint brightness is uniform in [1 - v, 1 + v]."),
-              number("seed", Dimension::None, 1, 0, 2147483647, "Random seed of the scattering.")}});
+              number("seed", Dimension::None, 1, 0, 2147483647, "Random seed of the scattering."),
+              referenceList("models", "source", PortType::PlantModel, false,
+                            "Plant models of the species: [@oak, @palm]; each species is drawn with "
+                            "the plant_model source of the same name (a species without one is an "
+                            "error). Without `models` the plants are markers only.")}});
     }
+
+    AttributeSchema presetChoice;
+    presetChoice.name = "preset";
+    presetChoice.type = ValueType::Word;
+    presetChoice.words = PlantGenerator::presetNames();
+    presetChoice.doc = "Generated tree: a preset of `sylva plant generate`, e.g. `preset = oak`.";
+    registry.add(
+        {"source", "plant_model", PortType::PlantModel,
+         "One plant species for the vegetation renderer: its mesh and its ellipsoid/line level of "
+         "detail (seed 001 ch. 3), built once and cached under $SYLVA_CACHE_DIR (else "
+         "$XDG_CACHE_HOME/sylva or ~/.cache/sylva) as plants/<content hash>.plod. Either a generated "
+         "tree (`preset`, `leaves`, `seed`) or a `file`: a glTF/GLB/OBJ model (imported), or a .plod "
+         "(level of detail only: no close-up mesh). `lod` gives a prebuilt .plod for a model, read "
+         "instead of building. Referenced by a plants source's `models`; the species name is the "
+         "source name.",
+         {presetChoice,
+          optionalNumber("leaves", Dimension::None, 1, 1e6,
+                         "Generated tree: exact number of leaves (default: the preset's own)."),
+          number("seed", Dimension::None, 1, 0, 2147483647,
+                 "Generated tree: random seed (also seeds the level-of-detail builder)."),
+          simple("file", ValueType::String, std::nullopt,
+                 "Model file (.gltf, .glb, .obj; leaves/branches as in `sylva plant info`) or a .plod "
+                 "(level of detail only), relative to the project file."),
+          simple("lod", ValueType::String, std::nullopt,
+                 "Prebuilt .plod of this model (`sylva plant build`), used instead of building."),
+          simple("billboards", ValueType::Bool, boolean(false),
+                 "Also build billboard clouds (seed 003), for comparison.")}});
     registry.setOutputFrom("rasterize", "kind");
 }
 

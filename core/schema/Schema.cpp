@@ -22,6 +22,8 @@ const char* portTypeName(PortType type) {
             return "features";
         case PortType::Instances:
             return "instances";
+        case PortType::PlantModel:
+            return "plant_model";
     }
     return "none";
 }

@@ -11,6 +11,7 @@
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/sources/CoverageRasterizer.h"
 #include "sylva/core/sources/InstanceTileCodec.h"
+#include "sylva/core/sources/PlantModelSource.h"
 
 namespace sylva {
 namespace {
@@ -626,6 +627,42 @@ Result<std::unique_ptr<Source>> PlantsSource::create(const SourceBuildContext& c
         make(context.block.name, elevation.value(), density.value(), featureSource, std::move(p));
     if (!made) {
         return Error{reader.where() + made.error().message};
+    }
+    // Models: species name = model source name; every species needs one.
+    if (reader.value("models") != nullptr && context.inputList != nullptr) {
+        Result<std::vector<const Source*>> models = (*context.inputList)("models");
+        if (!models) {
+            return models.error();
+        }
+        std::vector<const PlantModelSource*> byName;
+        for (const Source* source : models.value()) {
+            const PlantModelSource* model = PlantModelSource::from(source);
+            if (model == nullptr) {
+                return Error{reader.where("models") + "'models' expects plant_model sources, but '" +
+                             source->name() + "' gives " + portTypeName(source->output())};
+            }
+            byName.push_back(model);
+        }
+        PlantsSource& plants = *made.value();
+        for (const std::string& species : plants.speciesNames_) {
+            auto found = std::find_if(byName.begin(), byName.end(), [&](const PlantModelSource* m) {
+                return m->name() == species;
+            });
+            if (found == byName.end()) {
+                std::string known;
+                for (const PlantModelSource* m : byName) {
+                    known += (known.empty() ? "" : ", ") + m->name();
+                }
+                return Error{reader.where("models") + "species '" + species +
+                             "' has no plant model: `models` lists " +
+                             (known.empty() ? std::string("none") : known) +
+                             " (a plant_model source named like the species draws it)"};
+            }
+            plants.models_.push_back(*found);
+        }
+        plants.modelSources_ = std::move(byName);
+    } else {
+        made.value()->models_.assign(made.value()->speciesNames_.size(), nullptr);
     }
     return std::unique_ptr<Source>(std::move(made.value()));
 }

@@ -9,6 +9,7 @@
 #include "sylva/core/sources/MaskSource.h"
 #include "sylva/core/sources/NoiseSource.h"
 #include "sylva/core/sources/NormalMapSource.h"
+#include "sylva/core/sources/PlantModelSource.h"
 #include "sylva/core/sources/PlantsSource.h"
 #include "sylva/core/sources/RasterSource.h"
 #include "sylva/core/sources/RasterizeSource.h"
@@ -33,6 +34,7 @@ SourceCreator findSourceCreator(std::string_view kind) {
         {"rasterize", &RasterizeSource::create},
         {"elevation_edit", &ElevationEditSource::create},
         {"plants", &PlantsSource::create},
+        {"plant_model", &PlantModelSource::create},
     };
     for (const Entry& entry : kTable) {
         if (entry.kind == kind) {

@@ -46,6 +46,8 @@ Result<SourceGraph> SourceGraph::build(const ProjectModel& model) {
         model.file.has_parent_path() ? model.file.parent_path() : std::filesystem::path(".");
     std::function<Result<const Source*>(const Block&)> create;
 
+    std::function<Result<const Source*>(const BlockReader&, std::string_view, const std::string&)>
+        resolveNamed;
     Resolve resolve = [&](const BlockReader& reader, std::string_view attribute,
                           bool required) -> Result<const Source*> {
         std::optional<std::string> target = reader.reference(attribute);
@@ -55,6 +57,11 @@ Result<SourceGraph> SourceGraph::build(const ProjectModel& model) {
             }
             return static_cast<const Source*>(nullptr);
         }
+        return resolveNamed(reader, attribute, *target);
+    };
+    resolveNamed = [&](const BlockReader& reader, std::string_view attribute,
+                       const std::string& targetName) -> Result<const Source*> {
+        const std::string* target = &targetName;
         auto it = blocks.find(*target);
         if (it == blocks.end()) {
             return Error{reader.where(attribute) + "unknown source '" + *target + "'"};
@@ -95,7 +102,19 @@ Result<SourceGraph> SourceGraph::build(const ProjectModel& model) {
         const InputResolver input = [&](std::string_view attribute, bool required) {
             return resolve(reader, attribute, required);
         };
-        const SourceBuildContext context{block, reader, input, projectFolder};
+        const InputListResolver inputList =
+            [&](std::string_view attribute) -> Result<std::vector<const Source*>> {
+            std::vector<const Source*> sources;
+            for (const std::string& name : reader.references(attribute)) {
+                Result<const Source*> source = resolveNamed(reader, attribute, name);
+                if (!source) {
+                    return source.error();
+                }
+                sources.push_back(source.value());
+            }
+            return sources;
+        };
+        const SourceBuildContext context{block, reader, input, projectFolder, &inputList};
         Result<std::unique_ptr<Source>> made = creator(context);
         visiting.erase(block.name);
         if (!made) {

@@ -16,15 +16,16 @@ namespace sylva {
 // What flows along an edge of the source graph.
 enum class PortType {
     None,
-    Elevation,  // metres above the WGS84 ellipsoid, one channel
-    Image,      // colour, linear RGB(A)
-    Normals,    // unit surface normals in ECEF, three channels
-    Mask,       // one channel in [0, 1]
-    Features,   // vector features (points, lines, polygons)
-    Instances,  // plant instances
+    Elevation,   // metres above the WGS84 ellipsoid, one channel
+    Image,       // colour, linear RGB(A)
+    Normals,     // unit surface normals in ECEF, three channels
+    Mask,        // one channel in [0, 1]
+    Features,    // vector features (points, lines, polygons)
+    Instances,   // plant instances
+    PlantModel,  // one plant species: source mesh and LoD (PlantModelSource)
 };
 
-const char* portTypeName(PortType type);  // "elevation", "image", ...
+const char* portTypeName(PortType type);  // "elevation", "image", ..., "plant_model"
 
 enum class ValueType {
     Number,  // a Quantity; `dimension` says which

@@ -39,6 +39,10 @@
 // Species: by percentage (`species = { oak = 60%, pine = 40% }`) for scattered
 // instances; from an attribute for points (`species_attribute`, through
 // `species_map` when given). A value that is not a species is an error naming it.
+//
+// Models: `models = [@oak, @palm]` names the plant_model sources that draw the species
+// (species name = model source name); models() gives them per species. The models are
+// not inputs: instances do not depend on them, so their hashes stay out of this one.
 #pragma once
 
 #include <memory>
@@ -51,6 +55,8 @@
 #include "sylva/core/sources/SourceFactory.h"
 
 namespace sylva {
+
+class PlantModelSource;
 
 struct PlantsParameters {
     double perHectare = 100.0;  // instances per hectare where density = 1
@@ -95,6 +101,10 @@ public:
     int sampleLevel() const { return sampleLevel_; }
     double cellSize() const { return cellSize_; }  // metres
     const std::vector<std::string>& speciesNames() const { return speciesNames_; }
+    // The plant model of each species, indexed like speciesNames(); nullptr for every
+    // species when the block has no `models` (markers only). With `models`, graph build
+    // fails for a species without a model, so no entry is nullptr.
+    const std::vector<const PlantModelSource*>& models() const { return models_; }
 
     // `source` as a PlantsSource when it gives instances, else nullptr.
     static const PlantsSource* from(const Source* source);
@@ -111,7 +121,9 @@ private:
     const FeatureSource* features_;
     PlantsParameters parameters_;
     std::vector<std::string> speciesNames_;
-    std::vector<double> speciesCumulative_;  // over the `species` entries, ends at 1
+    std::vector<const PlantModelSource*> models_;        // per species
+    std::vector<const PlantModelSource*> modelSources_;  // `models` as listed
+    std::vector<double> speciesCumulative_;              // over the `species` entries, ends at 1
     double cellSize_ = 10.0;
     double rowHeight_ = 0.0;  // radians of latitude
     int rows_ = 0;
