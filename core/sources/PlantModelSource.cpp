@@ -1,5 +1,6 @@
 #include "sylva/core/sources/PlantModelSource.h"
 
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>

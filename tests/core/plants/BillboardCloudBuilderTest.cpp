@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "sylva/core/plants/PlantGenerator.h"
+#include "sylva/core/plants/PlantLodBuilder.h"
 
 namespace sylva {
 namespace {
@@ -134,6 +135,41 @@ TEST(BillboardCloudBuilder, BadOptionsAreReported) {
     ASSERT_FALSE(cloud);
     EXPECT_EQ(cloud.error().message,
               "billboard cloud of 'bush': epsilons must lie in (0, 1) of the bounding radius");
+}
+
+}  // namespace
+}  // namespace sylva
+
+namespace sylva {
+namespace {
+
+// addBillboardClouds measures each level with the ellipsoid levels' metric: the source
+// against itself is exact, coarser clouds are worse than no error, and the stored size is
+// the quads' vertices plus the atlas.
+TEST(BillboardCloudBuilder, LevelsCarryTheirImageErrorAndBytes) {
+    const PlantModel model = tree("bush", 300);
+    PlantLodOptions options;
+    options.threads = 2;
+    EXPECT_EQ(plantMeshImageError(model, model, options), 0.0);
+    PlantLod lod;
+    ASSERT_TRUE(addBillboardClouds(model, lod, options));
+    ASSERT_GE(lod.billboards.levels.size(), 2u);
+    for (const BillboardLevel& level : lod.billboards.levels) {
+        EXPECT_GT(level.imageError, 0.0f);
+        EXPECT_LT(level.imageError, 0.2f);
+        EXPECT_FLOAT_EQ(level.imageError,
+                        float(plantMeshImageError(
+                            model, BillboardCloudBuilder::levelModel(level, "bush"), options)));
+        EXPECT_EQ(level.byteSize(), level.quads.size() * 80u +
+                                        std::uint64_t(level.atlas.width) * level.atlas.height * 4u);
+    }
+    // An empty model cannot have billboard clouds: the error names the plant.
+    PlantModel empty;
+    empty.name = "nothing";
+    Status failed = addBillboardClouds(empty, lod, options);
+    ASSERT_FALSE(failed);
+    EXPECT_EQ(failed.error().message.rfind("plant 'nothing': billboard clouds: ", 0), 0u)
+        << failed.error().message;
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <string_view>
+#include <vector>
 
 #include "sylva/core/base/Result.h"
 #include "sylva/core/scene/BlockReader.h"
