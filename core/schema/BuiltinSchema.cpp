@@ -223,9 +223,13 @@ SchemaRegistry makeBuiltin() {
     }
 
     {
-        AttributeSchema output = simple("output", ValueType::String, text("{camera}.png"),
-                                        "Output path template; {camera} and {scenario} are "
-                                        "replaced. Relative to the --out folder.");
+        AttributeSchema output = simple(
+            "output", ValueType::String, text("{camera}.png"),
+            "Output path template relative to the --out folder, with {view} {camera} {path} "
+            "{frame} {scenario} {time} {time:%H%M} {step} {t}. The extension picks the format: "
+            ".png (8-bit sRGB), .exr (linear half-float radiance after exposure, before tone "
+            "mapping), .mp4 (one H.264 video per path, encoded by ffmpeg; paths only, no "
+            "{frame}). Images carry metadata (camera, scenario, time, project, hashes).");
         registry.add({"views", "", PortType::None, "A series of images to render.",
                       {referenceList("cameras", "camera", PortType::None, false,
                                      "Cameras to render (a views block needs cameras or paths)."),
@@ -259,7 +263,10 @@ SchemaRegistry makeBuiltin() {
               number("exposure", Dimension::None, 1.0, 0.01, 100.0,
                      "Scale applied to radiance before tone mapping."),
               number("max_level", Dimension::None, 24, 4, 28,
-                     "Finest clipmap level drawn.")}});
+                     "Finest clipmap level drawn."),
+              number("cache_mb", Dimension::None, 1024, 16, 1048576,
+                     "Tile cache budget in MiB (render and watch; --cache-mb overrides it). "
+                     "It must hold one frame's tiles, about 250 MiB at 25 levels.")}});
     }
     addLanguageSchema(registry);
     return registry;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <set>
 
 #include "sylva/dsl/ProjectLoader.h"
@@ -147,7 +148,8 @@ camera hill { position = geo(-8.01deg, -34.85deg, 90m) }
     EXPECT_EQ(errorOf(base + "views v { cameras = [@beach]; output = \"{camera}_{day}.png\" }"),
               "series.sylva:7:31: views 'v': unknown placeholder '{day}' in output template "
               "'{camera}_{day}.png' "
-              "(known: {view} {camera} {path} {frame} {scenario} {time} {time:FORMAT})");
+              "(known: {view} {camera} {path} {frame} {scenario} {step} {t} {time} "
+              "{time:FORMAT})");
     EXPECT_EQ(errorOf(base + "path p { keys = [{ at = 0s, position = geo(0deg, 0deg, 1km) }] }\n"
                              "views v { paths = [@p]; output = \"{frame}.png\" }"),
               "series.sylva:7:17: path 'p': a path needs at least two keys");
@@ -157,6 +159,47 @@ camera hill { position = geo(-8.01deg, -34.85deg, 90m) }
               "series.sylva:8:59: views 'v': the series makes the compare image 'c', so its output "
               "template needs "
               "{scenario}");
+    EXPECT_EQ(errorOf(base + "blend b { from = @today; to = @dam; steps = 5 }\n"
+                             "views v { cameras = [@beach]; scenarios = [@today, @dam]; output = "
+                             "\"{scenario}/{camera}.png\" }"),
+              "series.sylva:8:59: views 'v': the blend 'b' is a sequence of 5 images (steps), so "
+              "the output template needs {step} or {t}");
+    EXPECT_EQ(errorOf(base + "blend b { from = @today; to = @dam; steps = 2.5 }\n"
+                             "views v { cameras = [@beach]; scenarios = [@today, @dam]; output = "
+                             "\"{scenario}/{camera}{step}.png\" }"),
+              "series.sylva:7:37: blend 'b': steps must be a whole number of images, got 2.500000");
+}
+
+TEST(ViewSeriesTest, BlendSequenceRunsFromZeroToOne) {
+    const ProjectModel model = load(R"(
+source height : noise { octaves = 4 }
+scenario today { layers = [@height] }
+scenario dam extends today { override @height { amplitude = 3km } }
+blend grow { from = @today; to = @dam; steps = 5 }
+camera beach { position = geo(-8deg, -34.8deg, 20m) }
+views v {
+    cameras = [@beach]
+    scenarios = [@today, @dam]
+    output = "{scenario}/{camera}_{step}_{t}.png"
+}
+)");
+    auto jobs = ViewSeries::expand(model, "out");
+    ASSERT_TRUE(jobs.ok()) << jobs.error().message;
+    ASSERT_EQ(jobs.value().size(), 2u + 5u);
+    EXPECT_EQ(jobs.value()[0].output, std::filesystem::path("out/today/beach__.png"));
+    const double expected[] = {0.0, 0.25, 0.5, 0.75, 1.0};
+    for (int step = 0; step < 5; ++step) {
+        const RenderJob& job = jobs.value()[2 + static_cast<std::size_t>(step)];
+        EXPECT_EQ(job.kind, RenderJobKind::Blend);
+        EXPECT_EQ(job.step, step);
+        EXPECT_DOUBLE_EQ(job.blendAmount, expected[step]);
+        EXPECT_EQ(job.first, 0u);
+        EXPECT_EQ(job.second, 1u);
+        char name[64];
+        std::snprintf(name, sizeof name, "out/grow/beach_%03d_%.3f.png", step, expected[step]);
+        EXPECT_EQ(job.output, std::filesystem::path(name));
+        EXPECT_EQ(job.group, jobs.value()[0].group);  // shards keep the sequence together
+    }
 }
 
 }  // namespace

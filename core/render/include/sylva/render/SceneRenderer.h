@@ -33,12 +33,17 @@ struct RenderSettings {
     // image is then independent of thread timing); interactive use draws what is
     // ready and lets the provider's workers catch up (seed 001 §4.7).
     bool waitForTiles = true;
+    // Also read back the linear radiance (Image::radiance), e.g. for EXR output.
+    bool linearOutput = false;
 };
 
 struct Image {
     int width = 0;
     int height = 0;
     std::vector<std::uint8_t> pixels;  // RGBA8, sRGB, rows top to bottom
+    // With RenderSettings::linearOutput: RGBA floats, linear radiance × exposure (before
+    // tone mapping), alpha 1, rows top to bottom; `pixels` = sRGB(1 − exp(−radiance)).
+    std::vector<float> radiance;
 };
 
 struct RenderStatistics {
@@ -70,7 +75,7 @@ public:
 
 private:
     SceneRenderer() = default;
-    Status ensureTargets(int width, int height);
+    Status ensureTargets(int width, int height, bool linearOutput);
 
     std::unique_ptr<TerrainRenderer> terrain_;
     std::unique_ptr<ShadingPass> shading_;
