@@ -304,6 +304,59 @@ expect_stderr "zoneless.sylva:5:14: views 'photos': time 2024-06-21T09:00:00 has
 [ ! -e "$SCRATCH/zoneless" ] || fail "output folder created although nothing may be rendered"
 end
 
+# --- output formats: EXR, metadata, blend sequences, MP4 -----------------------
+
+FORMATS=$PROJECTS/formats.sylva
+begin "EXR images are half float with metadata; PNGs carry the same as text"
+run render "$FORMATS" "${FAST[@]}" --out "$SCRATCH/formats" --views exr
+expect_rc 0
+info=$(iinfo -v "$SCRATCH/formats/exr/today_east.exr" 2>&1)
+echo "$info" | grep -q "half openexr" || fail "not a half-float EXR: $info"
+echo "$info" | grep -q 'sylva:scenario: "today"' || fail "EXR lacks the scenario: $info"
+echo "$info" | grep -q 'sylva:project_hash: "[0-9a-f]\{16\}"' || fail "EXR lacks the project hash: $info"
+echo "$info" | grep -q 'sylva:version: "' || fail "EXR lacks the version: $info"
+run render "$FORMATS" "${FAST[@]}" --out "$SCRATCH/formats" --views png
+expect_rc 0
+info=$(iinfo -v "$SCRATCH/formats/png/drought_east.png" 2>&1)
+echo "$info" | grep -q 'sylva:time: "2024-06-21T09:00:00+02:00"' || fail "PNG lacks the time: $info"
+echo "$info" | grep -q 'sylva:camera: "east"' || fail "PNG lacks the camera: $info"
+end
+
+begin "a blend with steps = 3 writes t = 0, 0.5, 1 (in EXR composed in linear light)"
+for f in png/grow_east000.png png/grow_east001.png png/grow_east002.png exr/grow_east001.exr exr/change_east.exr; do
+    [ -s "$SCRATCH/formats/$f" ] || fail "missing $f"
+done
+iinfo -v "$SCRATCH/formats/png/grow_east001.png" | grep -q 'sylva:blend_amount: "0.5"' || fail "step 1 is not t = 0.5"
+end
+
+begin "MP4 without ffmpeg on PATH -> located error before rendering"
+PATH=/nonexistent "$SYLVA" render "$FORMATS" "${FAST[@]}" --out "$SCRATCH/nofilm" --views film >"$OUT" 2>"$ERR"
+RC=$?
+expect_rc 1
+expect_stderr "formats.sylva:32:5: views 'film': writing MP4 (film/today_fly.mp4) needs ffmpeg on PATH; install it (apt install ffmpeg)"
+[ ! -e "$SCRATCH/nofilm" ] || fail "output folder created although nothing may be rendered"
+end
+
+if command -v ffmpeg >/dev/null 2>&1 && command -v ffprobe >/dev/null 2>&1; then
+    begin "a path views block with an .mp4 template writes one H.264 video"
+    run render "$FORMATS" "${FAST[@]}" --out "$SCRATCH/formats" --views film
+    expect_rc 0
+    probe=$(ffprobe -v error -show_entries stream=codec_name,pix_fmt,nb_frames -of csv=p=0 "$SCRATCH/formats/film/today_fly.mp4" 2>&1)
+    [ "$probe" = "h264,yuv420p,4" ] || fail "expected h264,yuv420p,4 frames, got: $probe"
+    [ -z "$(find "$SCRATCH/formats/film" -name '.*' -print)" ] || fail "frames or temporaries left behind"
+    end
+else
+    echo "skip MP4 encoding test: ffmpeg/ffprobe not on PATH (apt install ffmpeg)"
+fi
+
+begin "render.cache_mb out of range is a located error"
+sed 's/cache_mb = 64/cache_mb = 8/' "$FORMATS" >"$SCRATCH/cache.sylva"
+run render "$SCRATCH/cache.sylva" "${FAST[@]}" --out "$SCRATCH/cache"
+expect_rc 1
+expect_stderr "cache.sylva:34:68"
+expect_stderr "8 is below the minimum 16"
+end
+
 # --- watch ----------------------------------------------------------------------
 
 begin "watch: an edit recomputes only the changed node's tiles; errors keep the image"
