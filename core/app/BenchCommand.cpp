@@ -336,6 +336,9 @@ int runBench(const std::vector<std::string>& arguments) {
     if (!arguments.empty() && arguments[0] == "tiles") {
         return runTilesBench(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
     }
+    if (!arguments.empty() && arguments[0] == "turnaround") {
+        return runTurnaroundBench(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
+    }
     if (!arguments.empty() && arguments[0] == "plantlod") {
         return runPlantLodBench(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
     }
@@ -346,14 +349,15 @@ int runBench(const std::vector<std::string>& arguments) {
         append(names, {names.empty() ? "" : ", ", suite.name});
     }
     if (command.has("help")) {
-        std::printf("usage: sylva bench SUITE [--json]\nsuites: %s, terrain, tiles, plantlod\n",
-                    names.c_str());
+        std::printf(
+            "usage: sylva bench SUITE [--json]\nsuites: %s, terrain, tiles, plantlod, turnaround\n",
+            names.c_str());
         return 0;
     }
     if (!command.error.empty() || command.positional.size() != 1) {
-        reportError(command.error.empty()
-                        ? "bench needs one suite: " + names + ", terrain, tiles, plantlod"
-                        : command.error);
+        reportError(command.error.empty() ? "bench needs one suite: " + names +
+                                                ", terrain, tiles, plantlod, turnaround"
+                                          : command.error);
         return 2;
     }
     for (const Suite& suite : kSuites) {
