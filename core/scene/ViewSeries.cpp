@@ -398,13 +398,21 @@ Result<std::vector<RenderJob>> ViewSeries::expand(const ProjectModel& model,
             videoJobs.push_back(std::move(video));
         }
         RenderJob& video = videoJobs[found->second];
-        if (!video.frames.empty() && (jobs[video.frames.front()].path != jobs[i].path ||
-                                      jobs[video.frames.front()].scenario != jobs[i].scenario)) {
+        const RenderJob& firstFrame = jobs[video.frames.empty() ? i : video.frames.front()];
+        auto describe = [](const RenderJob& job) {
+            std::string text = job.path;  // appended piecewise: GCC 12 -Wrestrict misfires
+            text.append(" ").append(job.scenario);
+            if (job.time) {
+                text.append(" ").append(job.time->text());
+            }
+            return text;
+        };
+        if (firstFrame.path != jobs[i].path || firstFrame.scenario != jobs[i].scenario ||
+            describe(firstFrame) != describe(jobs[i])) {
             return Error{locationOf(*views, "output") + ": views '" + views->name +
                          "': two videos would be written to '" + file.string() + "' (" +
-                         jobs[video.frames.front()].path + " " +
-                         jobs[video.frames.front()].scenario + "; " + jobs[i].path + " " +
-                         jobs[i].scenario + "); add {path}, {scenario} or {time} to the template"};
+                         describe(firstFrame) + "; " + describe(jobs[i]) +
+                         "); add {path}, {scenario} or {time} to the template"};
         }
         video.frames.push_back(i);
         jobs[i].video = jobs.size() + found->second;

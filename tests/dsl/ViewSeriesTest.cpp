@@ -170,6 +170,60 @@ camera hill { position = geo(-8.01deg, -34.85deg, 90m) }
               "series.sylva:7:37: blend 'b': steps must be a whole number of images, got 2.500000");
 }
 
+TEST(ViewSeriesTest, Mp4TemplatesMakeOneVideoJobPerPathAfterItsFrames) {
+    const std::string base = R"(
+source height : noise { octaves = 4 }
+scenario today { layers = [@height] }
+scenario dam extends today { override @height { amplitude = 3km } }
+camera beach { position = geo(-8deg, -34.8deg, 20m) }
+path approach {
+    keys = [
+        { at = 0s, position = geo(-7.9deg, -34.7deg, 2km), heading = 200deg },
+        { at = 1s, position = geo(-8deg, -34.8deg, 500m), heading = 220deg },
+    ]
+    fps = 4
+}
+)";
+    const ProjectModel model =
+        load(base +
+             "views film { paths = [@approach]; scenarios = [@today, @dam]; output = "
+             "\"film/{scenario}.mp4\" }");
+    auto jobs = ViewSeries::expand(model, "out");
+    ASSERT_TRUE(jobs.ok()) << jobs.error().message;
+    ASSERT_EQ(jobs.value().size(), 10u + 2u);  // 5 frames x 2 scenarios, 2 videos
+    const RenderJob& video = jobs.value()[10];
+    EXPECT_EQ(video.kind, RenderJobKind::Video);
+    EXPECT_EQ(video.output, std::filesystem::path("out/film/today.mp4"));
+    EXPECT_DOUBLE_EQ(video.framesPerSecond, 4.0);
+    ASSERT_EQ(video.frames.size(), 5u);
+    for (std::size_t i = 0; i < video.frames.size(); ++i) {
+        const RenderJob& frame = jobs.value()[video.frames[i]];
+        EXPECT_EQ(frame.frame, static_cast<int>(i));
+        EXPECT_EQ(frame.scenario, "today");
+        EXPECT_EQ(frame.video, std::optional<std::size_t>(10));
+        EXPECT_EQ(frame.group, video.group);  // one shard encodes what it rendered
+        char name[64];
+        std::snprintf(name, sizeof name, "out/film/.today.mp4.frames/%05zu.png", i);
+        EXPECT_EQ(frame.output, std::filesystem::path(name));
+    }
+    EXPECT_EQ(jobs.value()[11].output, std::filesystem::path("out/film/dam.mp4"));
+
+    auto errorOf = [&](const std::string& views) {
+        auto expanded = ViewSeries::expand(load(base + views), "out");
+        return expanded.ok() ? std::string("ok") : expanded.error().message;
+    };
+    EXPECT_EQ(errorOf("views v { paths = [@approach]; output = \"{frame}.mp4\" }"),
+              "series.sylva:13:32: views 'v': an MP4 holds every frame of a path; remove {frame} "
+              "from the output template");
+    EXPECT_EQ(errorOf("views v { cameras = [@beach]; output = \"{camera}.mp4\" }"),
+              "series.sylva:13:31: views 'v': an MP4 output holds the frames of paths; render "
+              "cameras in another views block with an image template such as \"{camera}.png\"");
+    EXPECT_EQ(errorOf("views v { paths = [@approach]; scenarios = [@today, @dam]; output = "
+                      "\"film.mp4\" }"),
+              "series.sylva:13:60: views 'v': two videos would be written to 'out/film.mp4' "
+              "(approach today; approach dam); add {path}, {scenario} or {time} to the template");
+}
+
 TEST(ViewSeriesTest, BlendSequenceRunsFromZeroToOne) {
     const ProjectModel model = load(R"(
 source height : noise { octaves = 4 }
