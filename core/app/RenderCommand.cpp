@@ -25,6 +25,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "CommandLine.h"
 #include "Commands.h"
@@ -365,6 +366,29 @@ int runRender(const std::vector<std::string>& arguments) {
             const RenderJobKind kind =
                 job.kind == RenderJobKind::Video ? allJobs[job.frames.front()].kind : job.kind;
             return kind == RenderJobKind::Compare || kind == RenderJobKind::Blend;
+        });
+    }
+    // Render order: the images of one viewpoint and scenario at all its times one after
+    // another (the sun changes only the shading, so later times find every tile still
+    // cached; with scenarios alternating, a large scenario's tiles push the other's out
+    // of the budget). Comparisons and videos keep their place after the images.
+    {
+        std::map<std::string, std::size_t> firstSeen;
+        auto rank = [&](const std::string& key, std::size_t index) {
+            return firstSeen.emplace(key, index).first->second;
+        };
+        std::map<std::size_t, std::tuple<std::size_t, std::size_t, std::size_t>> order;
+        for (const RenderJob& job : jobs) {
+            const std::string viewpoint =
+                job.view + "\n" + job.camera + "\n" + job.path + "\n" + std::to_string(job.frame);
+            order[job.index] =
+                job.kind == RenderJobKind::Image
+                    ? std::make_tuple(rank(viewpoint, job.index),
+                                      rank(viewpoint + "\n" + job.scenario, job.index), job.index)
+                    : std::make_tuple(allJobs.size(), allJobs.size(), job.index);
+        }
+        std::stable_sort(jobs.begin(), jobs.end(), [&](const RenderJob& a, const RenderJob& b) {
+            return order.at(a.index) < order.at(b.index);
         });
     }
     // MP4 outputs need ffmpeg: say so before rendering anything.

@@ -75,6 +75,16 @@ expect_rc 1
 expect_stderr "no-data/olinda/olinda_dem_utm25s.tif' is missing; run scripts/fetch-samples"
 end
 
+begin "bench turnaround without sample data -> exit 1 naming the file and scripts/fetch-samples"
+mkdir -p "$SCRATCH/no-data/projects/olinda"
+cp "$REPO/projects/olinda/olinda.sylva" "$SCRATCH/no-data/projects/olinda/"
+(cd "$SCRATCH/no-data" && "$SYLVA" bench turnaround --project projects/olinda/olinda.sylva >"$OUT" 2>"$ERR")
+RC=$?
+expect_rc 1
+expect_stderr "data/earth/earth.jpg' of projects/olinda/olinda.sylva is missing; run scripts/fetch-samples"
+[ "$(ls -A "$SCRATCH/no-data/projects/olinda")" = "olinda.sylva" ] || fail "temporary project left behind"
+end
+
 # --- project errors (exit 1, located) ------------------------------------------
 
 begin "missing project file"
