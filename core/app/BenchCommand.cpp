@@ -339,6 +339,9 @@ int runBench(const std::vector<std::string>& arguments) {
     if (!arguments.empty() && arguments[0] == "vegetation") {
         return runVegetationBench(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
     }
+    if (!arguments.empty() && arguments[0] == "turnaround") {
+        return runTurnaroundBench(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
+    }
     if (!arguments.empty() && arguments[0] == "plantlod") {
         return runPlantLodBench(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
     }
@@ -349,14 +352,15 @@ int runBench(const std::vector<std::string>& arguments) {
         append(names, {names.empty() ? "" : ", ", suite.name});
     }
     if (command.has("help")) {
-        std::printf("usage: sylva bench SUITE [--json]\nsuites: %s, terrain, tiles, plantlod, vegetation\n",
-                    names.c_str());
+        std::printf(
+            "usage: sylva bench SUITE [--json]\nsuites: %s, terrain, tiles, plantlod, turnaround, vegetation\n",
+            names.c_str());
         return 0;
     }
     if (!command.error.empty() || command.positional.size() != 1) {
-        reportError(command.error.empty()
-                        ? "bench needs one suite: " + names + ", terrain, tiles, plantlod, vegetation"
-                        : command.error);
+        reportError(command.error.empty() ? "bench needs one suite: " + names +
+                                                ", terrain, tiles, plantlod, turnaround, vegetation"
+                                          : command.error);
         return 2;
     }
     for (const Suite& suite : kSuites) {

@@ -23,6 +23,7 @@ int runPlant(const std::vector<std::string>& arguments);
 int runPlantBuild(const std::vector<std::string>& arguments);
 int runPlantInfo(const std::vector<std::string>& arguments);
 int runPlantLodBench(const std::vector<std::string>& arguments);
+int runTurnaroundBench(const std::vector<std::string>& arguments);
 
 // Removes every `--set block.attribute=value` (or `--set=...`) from `arguments` and
 // returns them as (path, value) pairs; the option may repeat, which CommandLine does not

@@ -39,6 +39,8 @@ Result<RenderSetup> makeRenderSetup(const ProjectModel& model, int overrideWidth
     settings.ocean = renderBlock.boolean("ocean", true);
     settings.exposure = renderBlock.optionalNumber("exposure").value_or(1.0);
     setup.terrain.maxLevel = static_cast<int>(renderBlock.optionalNumber("max_level").value_or(24));
+    setup.cacheMegabytes =
+        static_cast<std::size_t>(renderBlock.optionalNumber("cache_mb").value_or(1024));
     const std::string vegetation = renderBlock.string("vegetation", "lod");
     settings.vegetation.method = vegetation == "mesh"         ? VegetationMethod::Mesh
                                  : vegetation == "billboards" ? VegetationMethod::Billboard

@@ -22,6 +22,7 @@ struct RenderSetup {
     render::RenderSettings settings;
     render::TerrainSettings terrain;
     glm::dvec3 defaultSun{0.0, 0.0, 1.0};  // ECEF unit vector to the sun
+    std::size_t cacheMegabytes = 1024;     // tile cache budget (render block cache_mb)
 };
 
 // From the project's render block; width/height > 0 override its resolution.

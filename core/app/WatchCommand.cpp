@@ -106,15 +106,15 @@ int runWatch(const std::vector<std::string>& arguments) {
         reportError("--size expects WIDTHxHEIGHT within 1..16384, got '" + *size + "'");
         return 2;
     }
-    std::size_t cacheMegabytes = 1024;
+    // The budget: --cache-mb, else the render block's cache_mb (read on the first load).
+    std::optional<std::size_t> cacheMegabytes;
     if (std::optional<std::string> cache = command.get("cache-mb")) {
-        const std::optional<std::size_t> parsed = parseCacheMegabytes(*cache);
-        if (!parsed) {
+        cacheMegabytes = parseCacheMegabytes(*cache);
+        if (!cacheMegabytes) {
             reportError("--cache-mb expects a tile cache budget in MiB within 16..1048576, got '" +
                         *cache + "'");
             return 2;
         }
-        cacheMegabytes = *parsed;
     }
     render::ContextOptions contextOptions;
     if (std::optional<std::string> gl = command.get("gl")) {
@@ -137,7 +137,6 @@ int runWatch(const std::vector<std::string>& arguments) {
     }
     const render::ShaderLibrary library;
     SchedulerOptions schedulerOptions;
-    schedulerOptions.budgetBytes = cacheMegabytes << 20;
     std::unique_ptr<Scheduler> scheduler;
     std::unique_ptr<render::SceneRenderer> renderer;
 
@@ -180,6 +179,8 @@ int runWatch(const std::vector<std::string>& arguments) {
         }
         if (!scheduler) {
             schedulerOptions.format = TileFormat{setup.value().terrain.clipmapSize, 2};
+            schedulerOptions.budgetBytes = cacheMegabytes.value_or(setup.value().cacheMegabytes)
+                                           << 20;
             scheduler = std::make_unique<Scheduler>(schedulerOptions);
             Result<std::unique_ptr<render::SceneRenderer>> made =
                 render::SceneRenderer::create(library, setup.value().terrain);
@@ -230,6 +231,7 @@ int runWatch(const std::vector<std::string>& arguments) {
             }
             render::RenderSettings settings = setup.value().settings;
             settings.sunDirection = view.value().sun;
+            settings.linearOutput = ImageWriter::isExr(job.output);
             Result<render::Image> image =
                 renderer->render(layers.value(), *scheduler, view.value().camera, settings);
             if (!image) {
@@ -237,9 +239,18 @@ int runWatch(const std::vector<std::string>& arguments) {
                 ok = false;
                 continue;
             }
-            if (Status written =
+            Status written;
+            if (settings.linearOutput) {
+                LinearImage radiance;
+                radiance.width = image->width;
+                radiance.height = image->height;
+                radiance.pixels = std::move(image->radiance);
+                written = ImageWriter::writeLinear(job.output, radiance);
+            } else {
+                written =
                     ImageWriter::writeRgba8(job.output, image->width, image->height, image->pixels);
-                !written) {
+            }
+            if (!written) {
                 reportError(written.error().message);
                 ok = false;
                 continue;

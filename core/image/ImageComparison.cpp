@@ -8,6 +8,7 @@
 #include "sylva/core/image/BitmapFont.h"
 #include "sylva/core/image/ColorDifference.h"
 #include "sylva/core/image/ColorSpace.h"
+#include "sylva/core/image/ToneMapping.h"
 
 namespace sylva {
 namespace {
@@ -38,8 +39,40 @@ std::uint8_t encode(float linear) {
         std::lround(std::clamp(linearToSrgb(linear), 0.0f, 1.0f) * 255.0f));
 }
 
-int labelScale(const RgbaImage& image) {
+template <typename Image>
+int labelScale(const Image& image) {
     return std::max(1, std::min(image.width, image.height) / 240);
+}
+
+Status sameSize(const LinearImage& a, const LinearImage& b) {
+    if (a.width != b.width || a.height != b.height) {
+        return Error{"cannot compare images of different sizes (" + std::to_string(a.width) + "x" +
+                     std::to_string(a.height) + " and " + std::to_string(b.width) + "x" +
+                     std::to_string(b.height) + ")"};
+    }
+    return {};
+}
+
+// The radiance that displays as this sRGB grey (for drawn overlays).
+void setGrey(float* pixel, std::uint8_t srgb) {
+    pixel[0] = pixel[1] = pixel[2] = ToneMapping::radiance(srgb);
+    pixel[3] = 1.0f;
+}
+
+// Copies every pixel the 8-bit `overlay` drew (alpha 255) into `image` as radiance.
+void applyOverlay(LinearImage& image, const RgbaImage& overlay) {
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            const std::uint8_t* drawn = overlay.at(x, y);
+            if (drawn[3] == 255) {
+                float* p = image.at(x, y);
+                for (int c = 0; c < 3; ++c) {
+                    p[c] = ToneMapping::radiance(drawn[c]);
+                }
+                p[3] = 1.0f;
+            }
+        }
+    }
 }
 
 }  // namespace
@@ -191,6 +224,87 @@ Result<RgbaImage> ImageComparison::difference(const RgbaImage& first, const Rgba
             top + barHeight + scale, text, scale, white);
     }
     return out;
+}
+
+Result<LinearImage> ImageComparison::blend(const LinearImage& from, const LinearImage& to,
+                                           double amount) {
+    if (Status size = sameSize(from, to); !size) {
+        return size.error();
+    }
+    if (!(amount >= 0.0 && amount <= 1.0)) {
+        return Error{"blend amount must be within [0, 1]"};
+    }
+    LinearImage out(from.width, from.height);
+    const float t = static_cast<float>(amount);
+    for (std::size_t i = 0; i < out.pixels.size(); ++i) {
+        out.pixels[i] = (1.0f - t) * from.pixels[i] + t * to.pixels[i];
+    }
+    return out;
+}
+
+Result<LinearImage> ImageComparison::sideBySide(const LinearImage& left, const LinearImage& right,
+                                                int gap) {
+    if (left.height != right.height) {
+        return Error{"side-by-side images need equal heights (" + std::to_string(left.height) +
+                     " and " + std::to_string(right.height) + ")"};
+    }
+    gap = std::max(gap, 0);
+    const float gutter = ToneMapping::radiance(16);
+    LinearImage out(left.width + gap + right.width, left.height, gutter, gutter, gutter);
+    for (int y = 0; y < out.height; ++y) {
+        std::copy_n(left.at(0, y), static_cast<std::size_t>(left.width) * 4, out.at(0, y));
+        std::copy_n(right.at(0, y), static_cast<std::size_t>(right.width) * 4,
+                    out.at(left.width + gap, y));
+    }
+    return out;
+}
+
+Result<LinearImage> ImageComparison::swipe(const LinearImage& left, const LinearImage& right,
+                                           double split) {
+    if (Status size = sameSize(left, right); !size) {
+        return size.error();
+    }
+    if (!(split >= 0.0 && split <= 1.0)) {
+        return Error{"swipe split must be within [0, 1]"};
+    }
+    LinearImage out = right;
+    const int divider = static_cast<int>(std::lround(split * left.width));
+    for (int y = 0; y < out.height; ++y) {
+        std::copy_n(left.at(0, y), static_cast<std::size_t>(divider) * 4, out.at(0, y));
+    }
+    // The same divider as the 8-bit swipe.
+    const int half = std::max(1, left.width / 640);
+    for (int y = 0; y < out.height; ++y) {
+        for (int x = divider - half - 1; x <= divider + half; ++x) {
+            if (x >= 0 && x < out.width) {
+                setGrey(out.at(x, y), x == divider - half - 1 || x == divider + half ? 32 : 240);
+            }
+        }
+    }
+    return out;
+}
+
+Result<LinearImage> ImageComparison::difference(const LinearImage& first, const LinearImage& second,
+                                                double maximumDeltaE) {
+    if (Status size = sameSize(first, second); !size) {
+        return size.error();
+    }
+    // ΔE is a difference of perceived colours, so it is taken between the displayed
+    // images; the heat map is a drawing and is stored as the radiance that shows it.
+    Result<RgbaImage> heat =
+        difference(ToneMapping::display(first), ToneMapping::display(second), maximumDeltaE);
+    if (!heat) {
+        return heat.error();
+    }
+    LinearImage out(first.width, first.height);
+    applyOverlay(out, heat.value());
+    return out;
+}
+
+void ImageComparison::label(LinearImage& image, const std::string& text, bool rightAligned) {
+    RgbaImage overlay(image.width, image.height, 0, 0, 0, 0);
+    label(overlay, text, rightAligned);
+    applyOverlay(image, overlay);
 }
 
 void ImageComparison::label(RgbaImage& image, const std::string& text, bool rightAligned) {

@@ -46,15 +46,22 @@ glm::dmat4 SceneRenderer::projection(double verticalFov, double aspect, double n
     return p;
 }
 
-Status SceneRenderer::ensureTargets(int width, int height) {
-    if (gbuffer_.id() != 0 && gbuffer_.width() == width && gbuffer_.height() == height) {
+Status SceneRenderer::ensureTargets(int width, int height, bool linearOutput) {
+    const int outputs = linearOutput ? 2 : 1;
+    if (gbuffer_.id() != 0 && gbuffer_.width() == width && gbuffer_.height() == height &&
+        output_.colorCount() == outputs) {
         return Status::success();
     }
     Result<Framebuffer> gbuffer = Framebuffer::create(width, height, {GL_RGBA16F, GL_RGBA16F}, true);
     if (!gbuffer) {
         return gbuffer.error();
     }
-    Result<Framebuffer> output = Framebuffer::create(width, height, {GL_RGBA8}, false);
+    // The shading pass writes radiance to location 1; without that attachment GL drops it.
+    Result<Framebuffer> output =
+        Framebuffer::create(width, height,
+                            linearOutput ? std::vector<std::uint32_t>{GL_RGBA8, GL_RGBA32F}
+                                         : std::vector<std::uint32_t>{GL_RGBA8},
+                            false);
     if (!output) {
         return output.error();
     }
@@ -69,7 +76,7 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
         return Error{"image size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
                      " is outside 1..16384"};
     }
-    if (Status status = ensureTargets(settings.width, settings.height); !status) {
+    if (Status status = ensureTargets(settings.width, settings.height, settings.linearOutput); !status) {
         return status.error();
     }
     // Height above the terrain at the nadir, from the level that will be drawn there:
@@ -164,6 +171,9 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     image.width = settings.width;
     image.height = settings.height;
     image.pixels = output_.readPixelsRGBA8(0);
+    if (settings.linearOutput) {
+        image.radiance = output_.readPixelsFloat(1, 4);
+    }
     Framebuffer::unbind();
     glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
     statistics_.terrain = terrain_->statistics();

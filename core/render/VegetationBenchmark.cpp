@@ -245,7 +245,7 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(const ShaderLibrary& li
     const ConstantSource elevation("flat", kGround);
     const ConstantSource color("meadow", glm::vec4(0.10f, 0.14f, 0.05f, 1.0f));
     const NormalMapSource normals("flat.normals", &elevation, 1.0);
-    const TerrainLayers layers{&elevation, &color, &normals};
+    const TerrainLayers layers{&elevation, &color, &normals, {}};
     TileEvaluator evaluator(TileFormat{256, 2});
     TerrainSettings terrainSettings;
     Result<std::unique_ptr<SceneRenderer>> created = SceneRenderer::create(library, terrainSettings);

@@ -1,6 +1,8 @@
 #include "sylva/core/scene/ViewSeries.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <map>
 
@@ -36,6 +38,27 @@ std::string locationOf(const Block& block, std::string_view attribute) {
     return block.location.toString();
 }
 
+bool endsWithMp4(const std::string& pattern) {
+    if (pattern.size() < 4) {
+        return false;
+    }
+    std::string extension = pattern.substr(pattern.size() - 4);
+    for (char& c : extension) {
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    }
+    return extension == ".mp4";
+}
+
+// Where frame `frame` of the video `video` is rendered before encoding.
+std::filesystem::path framePath(const std::filesystem::path& video, int frame) {
+    char name[32];
+    std::snprintf(name, sizeof name, "%05d.png", std::max(frame, 0));
+    std::string folder = video.filename().string();
+    folder.insert(folder.begin(), '.');  // (built in place: GCC 12 warns on "." + string)
+    folder.append(".frames");
+    return video.parent_path() / folder / name;
+}
+
 }  // namespace
 
 Result<std::string> ViewSeries::expandTemplate(const std::string& pattern, const RenderJob& job) {
@@ -63,6 +86,18 @@ Result<std::string> ViewSeries::expandTemplate(const std::string& pattern, const
             out += text;
         } else if (token == "scenario") {
             out += job.scenario;
+        } else if (token == "step") {
+            if (job.step >= 0) {
+                char text[16];
+                std::snprintf(text, sizeof text, "%03d", job.step);
+                out += text;
+            }
+        } else if (token == "t") {
+            if (job.step >= 0) {
+                char text[16];
+                std::snprintf(text, sizeof text, "%.3f", job.blendAmount);
+                out += text;
+            }
         } else if (token == "time" || token.rfind("time:", 0) == 0) {
             if (!job.time) {
                 continue;  // no times in this series: the token vanishes
@@ -110,9 +145,9 @@ Result<std::string> ViewSeries::expandTemplate(const std::string& pattern, const
                 }
             }
         } else {
-            return Error{
-                "unknown placeholder '{" + token + "}' in output template '" + pattern +
-                "' (known: {view} {camera} {path} {frame} {scenario} {time} {time:FORMAT})"};
+            return Error{"unknown placeholder '{" + token + "}' in output template '" + pattern +
+                         "' (known: {view} {camera} {path} {frame} {scenario} {step} {t} {time} "
+                         "{time:FORMAT})"};
         }
     }
     return out;
@@ -143,9 +178,34 @@ Result<std::vector<RenderJob>> ViewSeries::expand(const ProjectModel& model,
     std::vector<RenderJob> comparisons;
     std::vector<std::string> patterns;  // per job, for collision messages
     std::map<std::string, std::size_t> groups;
+    // Per image / comparison: the video it is a frame of (empty path: none) and its block.
+    using VideoOf = std::pair<std::filesystem::path, const Block*>;
+    std::vector<VideoOf> videoFiles, comparisonVideos;
     for (const Block* views : viewBlocks) {
         BlockReader reader(*views, SchemaRegistry::builtin().find("views"));
         const std::string pattern = reader.string("output", "{camera}.png");
+        const bool video = endsWithMp4(pattern);
+        if (video && !reader.references("cameras").empty()) {
+            return Error{locationOf(*views, "output") + ": views '" + views->name +
+                         "': an MP4 output holds the frames of paths; render cameras in another "
+                         "views block with an image template such as \"{camera}.png\""};
+        }
+        if (video && pattern.find("{frame}") != std::string::npos) {
+            return Error{locationOf(*views, "output") + ": views '" + views->name +
+                         "': an MP4 holds every frame of a path; remove {frame} from the output "
+                         "template"};
+        }
+        // Where a job goes: its file, or for videos a frame in the video's frames folder.
+        auto place = [&](RenderJob& job, const std::string& name) {
+            job.output = outputFolder / name;
+            if (video) {
+                const std::filesystem::path file = job.output;
+                job.output = framePath(file, job.frame);
+                videoFiles.emplace_back(file, views);
+            } else {
+                videoFiles.emplace_back();
+            }
+        };
         std::vector<std::string> scenarios = reader.references("scenarios");
         if (scenarios.empty()) {
             scenarios.push_back(model.scenarios.empty() ? std::string()
@@ -221,7 +281,8 @@ Result<std::vector<RenderJob>> ViewSeries::expand(const ProjectModel& model,
                         return Error{locationOf(*views, "output") + ": views '" + views->name +
                                      "': " + name.error().message};
                     }
-                    job.output = outputFolder / name.value();
+                    job.videoFrame = video;
+                    place(job, name.value());
                     const std::string key = groupOf(job);
                     job.group = groups.emplace(key, groups.size()).first->second;
                     images.push_back(std::move(job));
@@ -260,12 +321,43 @@ Result<std::vector<RenderJob>> ViewSeries::expand(const ProjectModel& model,
                         job.scenario = block.name;
                         job.first = *a;
                         job.second = *b;
-                        Result<std::string> name = expandTemplate(pattern, job);
-                        if (!name) {
-                            return name.error();
+                        // A blend sequence: `steps` images from t = 0 to 1.
+                        int steps = 1;
+                        if (kind == RenderJobKind::Blend) {
+                            job.blendAmount = comparison.optionalNumber("amount").value_or(0.5);
+                            if (std::optional<double> count = comparison.optionalNumber("steps")) {
+                                if (*count != std::floor(*count)) {
+                                    return Error{locationOf(block, "steps") + ": blend '" +
+                                                 block.name +
+                                                 "': steps must be a whole number "
+                                                 "of images, got " +
+                                                 std::to_string(*count)};
+                                }
+                                steps = static_cast<int>(*count);
+                            }
+                            if (steps > 1 && pattern.find("{step}") == std::string::npos &&
+                                pattern.find("{t}") == std::string::npos) {
+                                return Error{locationOf(*views, "output") + ": views '" +
+                                             views->name + "': the blend '" + block.name +
+                                             "' is a sequence of " + std::to_string(steps) +
+                                             " images (steps), so the output template needs "
+                                             "{step} or {t}"};
+                            }
                         }
-                        job.output = outputFolder / name.value();
-                        comparisons.push_back(std::move(job));
+                        for (int step = 0; step < steps; ++step) {
+                            if (steps > 1) {
+                                job.step = step;
+                                job.blendAmount = static_cast<double>(step) / (steps - 1);
+                            }
+                            Result<std::string> name = expandTemplate(pattern, job);
+                            if (!name) {
+                                return name.error();
+                            }
+                            place(job, name.value());
+                            comparisonVideos.push_back(videoFiles.back());
+                            videoFiles.pop_back();
+                            comparisons.push_back(job);
+                        }
                     }
                     return {};
                 };
@@ -284,6 +376,49 @@ Result<std::vector<RenderJob>> ViewSeries::expand(const ProjectModel& model,
     std::vector<RenderJob> jobs = std::move(images);
     for (RenderJob& comparison : comparisons) {
         jobs.push_back(std::move(comparison));
+    }
+    // One Video job per video file, after everything else, listing its frames in order.
+    videoFiles.insert(videoFiles.end(), comparisonVideos.begin(), comparisonVideos.end());
+    std::map<std::filesystem::path, std::size_t> videos;
+    std::vector<RenderJob> videoJobs;
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+        const auto& [file, views] = videoFiles[i];
+        if (file.empty()) {
+            continue;
+        }
+        auto [found, added] = videos.emplace(file, videoJobs.size());
+        if (added) {
+            RenderJob video = jobs[i];
+            video.kind = RenderJobKind::Video;
+            video.output = file;
+            video.frames.clear();
+            Result<CameraPath> path = CameraPath::fromBlock(*model.findPath(jobs[i].path));
+            SYLVA_CHECK(path.ok());  // checked when its frames were listed
+            video.framesPerSecond = path.value().framesPerSecond();
+            videoJobs.push_back(std::move(video));
+        }
+        RenderJob& video = videoJobs[found->second];
+        const RenderJob& firstFrame = jobs[video.frames.empty() ? i : video.frames.front()];
+        auto describe = [](const RenderJob& job) {
+            std::string text = job.path;  // appended piecewise: GCC 12 -Wrestrict misfires
+            text.append(" ").append(job.scenario);
+            if (job.time) {
+                text.append(" ").append(job.time->text());
+            }
+            return text;
+        };
+        if (firstFrame.path != jobs[i].path || firstFrame.scenario != jobs[i].scenario ||
+            describe(firstFrame) != describe(jobs[i])) {
+            return Error{locationOf(*views, "output") + ": views '" + views->name +
+                         "': two videos would be written to '" + file.string() + "' (" +
+                         describe(firstFrame) + "; " + describe(jobs[i]) +
+                         "); add {path}, {scenario} or {time} to the template"};
+        }
+        video.frames.push_back(i);
+        jobs[i].video = jobs.size() + found->second;
+    }
+    for (RenderJob& video : videoJobs) {
+        jobs.push_back(std::move(video));
     }
     // Two jobs onto one file: the template lacks a placeholder that tells them apart.
     std::map<std::filesystem::path, std::size_t> outputs;
@@ -317,8 +452,10 @@ Result<std::vector<RenderJob>> ViewSeries::expand(const ProjectModel& model,
 }
 
 std::string ViewSeries::groupOf(const RenderJob& job) {
-    return job.view + "\n" + job.camera + "\n" + job.path + "\n" + std::to_string(job.frame) +
-           "\n" + (job.time ? job.time->text() : std::string());
+    // All frames of a video stay in one shard, which encodes them.
+    return job.view + "\n" + job.camera + "\n" + job.path + "\n" +
+           std::to_string(job.videoFrame ? -1 : job.frame) + "\n" +
+           (job.time ? job.time->text() : std::string());
 }
 
 Result<std::pair<int, int>> ViewSeries::parseShard(const std::string& text) {

@@ -225,9 +225,13 @@ SchemaRegistry makeBuiltin() {
     }
 
     {
-        AttributeSchema output = simple("output", ValueType::String, text("{camera}.png"),
-                                        "Output path template; {camera} and {scenario} are "
-                                        "replaced. Relative to the --out folder.");
+        AttributeSchema output = simple(
+            "output", ValueType::String, text("{camera}.png"),
+            "Output path template relative to the --out folder, with {view} {camera} {path} "
+            "{frame} {scenario} {time} {time:%H%M} {step} {t}. The extension picks the format: "
+            ".png (8-bit sRGB), .exr (linear half-float radiance after exposure, before tone "
+            "mapping), .mp4 (one H.264 video per path, encoded by ffmpeg; paths only, no "
+            "{frame}). Images carry metadata (camera, scenario, time, project, hashes).");
         registry.add({"views", "", PortType::None, "A series of images to render.",
                       {referenceList("cameras", "camera", PortType::None, false,
                                      "Cameras to render (a views block needs cameras or paths)."),
@@ -262,6 +266,9 @@ SchemaRegistry makeBuiltin() {
                      "Scale applied to radiance before tone mapping."),
               number("max_level", Dimension::None, 24, 4, 28,
                      "Finest clipmap level drawn."),
+              number("cache_mb", Dimension::None, 1024, 16, 1048576,
+                     "Tile cache budget in MiB (render and watch; --cache-mb overrides it). "
+                     "It must hold one frame's tiles, about 250 MiB at 25 levels."),
               wordChoice("vegetation", {"lod", "billboards", "mesh"}, "lod",
                          "How plants are drawn: ray-cast ellipsoid/line levels of detail with the source "
                          "mesh for close-ups, billboard clouds (from .plod files built with them), or the "

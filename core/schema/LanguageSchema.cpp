@@ -81,12 +81,21 @@ void addLanguageSchema(SchemaRegistry& registry) {
         amount.minimum = 0.0;
         amount.maximum = 1.0;
         amount.defaultValue = number(0.5, Dimension::Ratio);
+        AttributeSchema steps = attribute(
+            "steps", ValueType::Number,
+            "Make a sequence of this many images from t = 0 to 1 (`amount` is then unused); "
+            "the views' output template then needs {step} (000, 001 ...) or {t} (0.000 ... "
+            "1.000).");
+        steps.dimension = Dimension::None;
+        steps.minimum = 2.0;
+        steps.maximum = 1000.0;
         registry.add({"blend",
                       "",
                       PortType::None,
-                      "A mix of two scenarios, e.g. a planting half-way grown.",
+                      "A mix of two scenarios, e.g. a planting half-way grown: one image, or a "
+                      "sequence from `from` to `to`.",
                       {scenarioReference("from", "Scenario at 0%."),
-                       scenarioReference("to", "Scenario at 100%."), amount}});
+                       scenarioReference("to", "Scenario at 100%."), amount, steps}});
     }
     {
         AttributeSchema interpolate = attribute("interpolate", ValueType::Word,

@@ -1,11 +1,13 @@
 #version 450 core
 // The shading pass: the only place light is computed. Reads the G-buffer (albedo and
-// ambient occlusion, normal, reversed-Z depth), lights terrain by the sun and sky, adds aerial
-// perspective and the sky from the atmosphere model, tone maps and writes sRGB.
+// ambient occlusion, normal, reversed-Z depth), lights terrain and plants by the sun and
+// sky, adds aerial perspective and the sky from the atmosphere model, tone maps and writes
+// sRGB (and, when the target has a second attachment, the exposed linear radiance).
 #include "atmosphere.glsl"
 
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outColor;
+layout(location = 1) out vec4 outRadiance;  // linear, after exposure (EXR output)
 
 uniform sampler2D uAlbedo;
 uniform sampler2D uNormal;
@@ -77,6 +79,8 @@ void main() {
             }
         }
     }
-    vec3 mapped = 1.0 - exp(-uExposure * radiance);
+    vec3 exposed = uExposure * radiance;
+    outRadiance = vec4(exposed, 1.0);
+    vec3 mapped = 1.0 - exp(-exposed);
     outColor = vec4(linearToSrgb(mapped), 1.0);
 }

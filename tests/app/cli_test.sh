@@ -22,48 +22,9 @@ rm -rf "$SCRATCH"
 mkdir -p "$SCRATCH"
 SCRATCH=$(cd "$SCRATCH" && pwd)
 
-passed=0
-failed=0
-OUT=$SCRATCH/stdout
-ERR=$SCRATCH/stderr
-RC=0
-
-# run ARGS...: runs sylva, storing exit code in RC and output in $OUT / $ERR.
-run() {
-    "$SYLVA" "$@" >"$OUT" 2>"$ERR"
-    RC=$?
-}
-
-# Per-case bookkeeping: a case fails if any of its checks fails.
-case_name=""
-case_ok=1
-begin() {
-    case_name=$1
-    case_ok=1
-}
-fail() {
-    case_ok=0
-    echo "  FAIL [$case_name]: $*"
-}
-end() {
-    if [ "$case_ok" -eq 1 ]; then
-        passed=$((passed + 1))
-        echo "ok   $case_name"
-    else
-        failed=$((failed + 1))
-        echo "--- stdout:"; sed 's/^/    /' "$OUT"
-        echo "--- stderr:"; sed 's/^/    /' "$ERR"
-    fi
-}
-expect_rc() {
-    [ "$RC" -eq "$1" ] || fail "exit code $RC, expected $1"
-}
-expect_stderr() {
-    grep -qF -- "$1" "$ERR" || fail "stderr lacks: $1"
-}
-expect_stdout() {
-    grep -qF -- "$1" "$OUT" || fail "stdout lacks: $1"
-}
+# The shared harness: run, begin/end, expect_rc/stderr/stdout, finish.
+# shellcheck source=lib.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 # expect_no_png DIR: no PNG (nor temporary file) anywhere below DIR.
 expect_no_png() {
     if [ -d "$1" ]; then
@@ -112,6 +73,16 @@ begin "bench tiles without sample data -> exit 1 naming the file and scripts/fet
 run bench tiles --data "$SCRATCH/no-data"
 expect_rc 1
 expect_stderr "no-data/olinda/olinda_dem_utm25s.tif' is missing; run scripts/fetch-samples"
+end
+
+begin "bench turnaround without sample data -> exit 1 naming the file and scripts/fetch-samples"
+mkdir -p "$SCRATCH/no-data/projects/olinda"
+cp "$REPO/projects/olinda/olinda.sylva" "$SCRATCH/no-data/projects/olinda/"
+(cd "$SCRATCH/no-data" && "$SYLVA" bench turnaround --project projects/olinda/olinda.sylva >"$OUT" 2>"$ERR")
+RC=$?
+expect_rc 1
+expect_stderr "data/earth/earth.jpg' of projects/olinda/olinda.sylva is missing; run scripts/fetch-samples"
+[ "$(ls -A "$SCRATCH/no-data/projects/olinda")" = "olinda.sylva" ] || fail "temporary project left behind"
 end
 
 # --- project errors (exit 1, located) ------------------------------------------
@@ -304,6 +275,59 @@ expect_stderr "zoneless.sylva:5:14: views 'photos': time 2024-06-21T09:00:00 has
 [ ! -e "$SCRATCH/zoneless" ] || fail "output folder created although nothing may be rendered"
 end
 
+# --- output formats: EXR, metadata, blend sequences, MP4 -----------------------
+
+FORMATS=$PROJECTS/formats.sylva
+begin "EXR images are half float with metadata; PNGs carry the same as text"
+run render "$FORMATS" "${FAST[@]}" --out "$SCRATCH/formats" --views exr
+expect_rc 0
+info=$(iinfo -v "$SCRATCH/formats/exr/today_east.exr" 2>&1)
+echo "$info" | grep -q "half openexr" || fail "not a half-float EXR: $info"
+echo "$info" | grep -q 'sylva:scenario: "today"' || fail "EXR lacks the scenario: $info"
+echo "$info" | grep -q 'sylva:project_hash: "[0-9a-f]\{16\}"' || fail "EXR lacks the project hash: $info"
+echo "$info" | grep -q 'sylva:version: "' || fail "EXR lacks the version: $info"
+run render "$FORMATS" "${FAST[@]}" --out "$SCRATCH/formats" --views png
+expect_rc 0
+info=$(iinfo -v "$SCRATCH/formats/png/drought_east.png" 2>&1)
+echo "$info" | grep -q 'sylva:time: "2024-06-21T09:00:00+02:00"' || fail "PNG lacks the time: $info"
+echo "$info" | grep -q 'sylva:camera: "east"' || fail "PNG lacks the camera: $info"
+end
+
+begin "a blend with steps = 3 writes t = 0, 0.5, 1 (in EXR composed in linear light)"
+for f in png/grow_east000.png png/grow_east001.png png/grow_east002.png exr/grow_east001.exr exr/change_east.exr; do
+    [ -s "$SCRATCH/formats/$f" ] || fail "missing $f"
+done
+iinfo -v "$SCRATCH/formats/png/grow_east001.png" | grep -q 'sylva:blend_amount: "0.5"' || fail "step 1 is not t = 0.5"
+end
+
+begin "MP4 without ffmpeg on PATH -> located error before rendering"
+PATH=/nonexistent "$SYLVA" render "$FORMATS" "${FAST[@]}" --out "$SCRATCH/nofilm" --views film >"$OUT" 2>"$ERR"
+RC=$?
+expect_rc 1
+expect_stderr "formats.sylva:32:5: views 'film': writing MP4 (film/today_fly.mp4) needs ffmpeg on PATH; install it (apt install ffmpeg)"
+[ ! -e "$SCRATCH/nofilm" ] || fail "output folder created although nothing may be rendered"
+end
+
+if command -v ffmpeg >/dev/null 2>&1 && command -v ffprobe >/dev/null 2>&1; then
+    begin "a path views block with an .mp4 template writes one H.264 video"
+    run render "$FORMATS" "${FAST[@]}" --out "$SCRATCH/formats" --views film
+    expect_rc 0
+    probe=$(ffprobe -v error -show_entries stream=codec_name,pix_fmt,nb_frames -of csv=p=0 "$SCRATCH/formats/film/today_fly.mp4" 2>&1)
+    [ "$probe" = "h264,yuv420p,4" ] || fail "expected h264,yuv420p,4 frames, got: $probe"
+    [ -z "$(find "$SCRATCH/formats/film" -name '.*' -print)" ] || fail "frames or temporaries left behind"
+    end
+else
+    echo "skip MP4 encoding test: ffmpeg/ffprobe not on PATH (apt install ffmpeg)"
+fi
+
+begin "render.cache_mb out of range is a located error"
+sed 's/cache_mb = 64/cache_mb = 8/' "$FORMATS" >"$SCRATCH/cache.sylva"
+run render "$SCRATCH/cache.sylva" "${FAST[@]}" --out "$SCRATCH/cache"
+expect_rc 1
+expect_stderr "cache.sylva:34:68"
+expect_stderr "8 is below the minimum 16"
+end
+
 # --- watch ----------------------------------------------------------------------
 
 begin "watch: an edit recomputes only the changed node's tiles; errors keep the image"
@@ -378,5 +402,4 @@ expect_rc 2
 expect_stderr "plant build needs -o OUT.plod"
 end
 
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish

@@ -16,44 +16,9 @@ rm -rf "$SCRATCH"
 mkdir -p "$SCRATCH"
 SCRATCH=$(cd "$SCRATCH" && pwd)
 
-passed=0
-failed=0
-OUT=$SCRATCH/stdout
-ERR=$SCRATCH/stderr
-RC=0
-run() {
-    "$SYLVA" "$@" >"$OUT" 2>"$ERR"
-    RC=$?
-}
-case_name=""
-case_ok=1
-begin() {
-    case_name=$1
-    case_ok=1
-}
-fail() {
-    case_ok=0
-    echo "  FAIL [$case_name]: $*"
-}
-end() {
-    if [ "$case_ok" -eq 1 ]; then
-        passed=$((passed + 1))
-        echo "ok   $case_name"
-    else
-        failed=$((failed + 1))
-        echo "--- stdout:"; sed 's/^/    /' "$OUT"
-        echo "--- stderr:"; sed 's/^/    /' "$ERR"
-    fi
-}
-expect_rc() {
-    [ "$RC" -eq "$1" ] || fail "exit code $RC, expected $1"
-}
-expect_stderr() {
-    grep -qF -- "$1" "$ERR" || fail "stderr lacks: $1"
-}
-expect_stdout() {
-    grep -qF -- "$1" "$OUT" || fail "stdout lacks: $1"
-}
+# The shared harness: run, begin/end, expect_rc/stderr/stdout, finish.
+# shellcheck source=lib.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 expect_no_temporaries() {
     local found
     found=$(find "$SCRATCH" -name '.sylva-*' -print)
@@ -156,5 +121,4 @@ expect_rc 0
 expect_no_temporaries
 end
 
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <set>
 
 #include "sylva/dsl/ProjectLoader.h"
@@ -147,7 +148,8 @@ camera hill { position = geo(-8.01deg, -34.85deg, 90m) }
     EXPECT_EQ(errorOf(base + "views v { cameras = [@beach]; output = \"{camera}_{day}.png\" }"),
               "series.sylva:7:31: views 'v': unknown placeholder '{day}' in output template "
               "'{camera}_{day}.png' "
-              "(known: {view} {camera} {path} {frame} {scenario} {time} {time:FORMAT})");
+              "(known: {view} {camera} {path} {frame} {scenario} {step} {t} {time} "
+              "{time:FORMAT})");
     EXPECT_EQ(errorOf(base + "path p { keys = [{ at = 0s, position = geo(0deg, 0deg, 1km) }] }\n"
                              "views v { paths = [@p]; output = \"{frame}.png\" }"),
               "series.sylva:7:17: path 'p': a path needs at least two keys");
@@ -157,6 +159,101 @@ camera hill { position = geo(-8.01deg, -34.85deg, 90m) }
               "series.sylva:8:59: views 'v': the series makes the compare image 'c', so its output "
               "template needs "
               "{scenario}");
+    EXPECT_EQ(errorOf(base + "blend b { from = @today; to = @dam; steps = 5 }\n"
+                             "views v { cameras = [@beach]; scenarios = [@today, @dam]; output = "
+                             "\"{scenario}/{camera}.png\" }"),
+              "series.sylva:8:59: views 'v': the blend 'b' is a sequence of 5 images (steps), so "
+              "the output template needs {step} or {t}");
+    EXPECT_EQ(errorOf(base + "blend b { from = @today; to = @dam; steps = 2.5 }\n"
+                             "views v { cameras = [@beach]; scenarios = [@today, @dam]; output = "
+                             "\"{scenario}/{camera}{step}.png\" }"),
+              "series.sylva:7:37: blend 'b': steps must be a whole number of images, got 2.500000");
+}
+
+TEST(ViewSeriesTest, Mp4TemplatesMakeOneVideoJobPerPathAfterItsFrames) {
+    const std::string base = R"(
+source height : noise { octaves = 4 }
+scenario today { layers = [@height] }
+scenario dam extends today { override @height { amplitude = 3km } }
+camera beach { position = geo(-8deg, -34.8deg, 20m) }
+path approach {
+    keys = [
+        { at = 0s, position = geo(-7.9deg, -34.7deg, 2km), heading = 200deg },
+        { at = 1s, position = geo(-8deg, -34.8deg, 500m), heading = 220deg },
+    ]
+    fps = 4
+}
+)";
+    const ProjectModel model =
+        load(base +
+             "views film { paths = [@approach]; scenarios = [@today, @dam]; output = "
+             "\"film/{scenario}.mp4\" }");
+    auto jobs = ViewSeries::expand(model, "out");
+    ASSERT_TRUE(jobs.ok()) << jobs.error().message;
+    ASSERT_EQ(jobs.value().size(), 10u + 2u);  // 5 frames x 2 scenarios, 2 videos
+    const RenderJob& video = jobs.value()[10];
+    EXPECT_EQ(video.kind, RenderJobKind::Video);
+    EXPECT_EQ(video.output, std::filesystem::path("out/film/today.mp4"));
+    EXPECT_DOUBLE_EQ(video.framesPerSecond, 4.0);
+    ASSERT_EQ(video.frames.size(), 5u);
+    for (std::size_t i = 0; i < video.frames.size(); ++i) {
+        const RenderJob& frame = jobs.value()[video.frames[i]];
+        EXPECT_EQ(frame.frame, static_cast<int>(i));
+        EXPECT_EQ(frame.scenario, "today");
+        EXPECT_EQ(frame.video, std::optional<std::size_t>(10));
+        EXPECT_EQ(frame.group, video.group);  // one shard encodes what it rendered
+        char name[64];
+        std::snprintf(name, sizeof name, "out/film/.today.mp4.frames/%05zu.png", i);
+        EXPECT_EQ(frame.output, std::filesystem::path(name));
+    }
+    EXPECT_EQ(jobs.value()[11].output, std::filesystem::path("out/film/dam.mp4"));
+
+    auto errorOf = [&](const std::string& views) {
+        auto expanded = ViewSeries::expand(load(base + views), "out");
+        return expanded.ok() ? std::string("ok") : expanded.error().message;
+    };
+    EXPECT_EQ(errorOf("views v { paths = [@approach]; output = \"{frame}.mp4\" }"),
+              "series.sylva:13:32: views 'v': an MP4 holds every frame of a path; remove {frame} "
+              "from the output template");
+    EXPECT_EQ(errorOf("views v { cameras = [@beach]; output = \"{camera}.mp4\" }"),
+              "series.sylva:13:31: views 'v': an MP4 output holds the frames of paths; render "
+              "cameras in another views block with an image template such as \"{camera}.png\"");
+    EXPECT_EQ(errorOf("views v { paths = [@approach]; scenarios = [@today, @dam]; output = "
+                      "\"film.mp4\" }"),
+              "series.sylva:13:60: views 'v': two videos would be written to 'out/film.mp4' "
+              "(approach today; approach dam); add {path}, {scenario} or {time} to the template");
+}
+
+TEST(ViewSeriesTest, BlendSequenceRunsFromZeroToOne) {
+    const ProjectModel model = load(R"(
+source height : noise { octaves = 4 }
+scenario today { layers = [@height] }
+scenario dam extends today { override @height { amplitude = 3km } }
+blend grow { from = @today; to = @dam; steps = 5 }
+camera beach { position = geo(-8deg, -34.8deg, 20m) }
+views v {
+    cameras = [@beach]
+    scenarios = [@today, @dam]
+    output = "{scenario}/{camera}_{step}_{t}.png"
+}
+)");
+    auto jobs = ViewSeries::expand(model, "out");
+    ASSERT_TRUE(jobs.ok()) << jobs.error().message;
+    ASSERT_EQ(jobs.value().size(), 2u + 5u);
+    EXPECT_EQ(jobs.value()[0].output, std::filesystem::path("out/today/beach__.png"));
+    const double expected[] = {0.0, 0.25, 0.5, 0.75, 1.0};
+    for (int step = 0; step < 5; ++step) {
+        const RenderJob& job = jobs.value()[2 + static_cast<std::size_t>(step)];
+        EXPECT_EQ(job.kind, RenderJobKind::Blend);
+        EXPECT_EQ(job.step, step);
+        EXPECT_DOUBLE_EQ(job.blendAmount, expected[step]);
+        EXPECT_EQ(job.first, 0u);
+        EXPECT_EQ(job.second, 1u);
+        char name[64];
+        std::snprintf(name, sizeof name, "out/grow/beach_%03d_%.3f.png", step, expected[step]);
+        EXPECT_EQ(job.output, std::filesystem::path(name));
+        EXPECT_EQ(job.group, jobs.value()[0].group);  // shards keep the sequence together
+    }
 }
 
 }  // namespace

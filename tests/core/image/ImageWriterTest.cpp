@@ -12,7 +12,8 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path scratch(const std::string& name) {
-    const fs::path folder = fs::temp_directory_path() / ("sylva-imagewriter-" + std::to_string(::getpid())) / name;
+    const fs::path folder =
+        fs::temp_directory_path() / ("sylva-imagewriter-" + std::to_string(::getpid())) / name;
     fs::remove_all(folder);
     fs::create_directories(folder);
     return folder;
@@ -33,7 +34,8 @@ void roundTrip(const std::string& name, bool opaque) {
     ASSERT_TRUE(written) << written.error().message;
     ASSERT_TRUE(fs::is_regular_file(path));
     for (const auto& entry : fs::recursive_directory_iterator(folder)) {
-        EXPECT_NE(entry.path().filename().string().rfind(".sylva-", 0), 0u) << "temporary left: " << entry.path();
+        EXPECT_NE(entry.path().filename().string().rfind(".sylva-", 0), 0u)
+            << "temporary left: " << entry.path();
     }
     int w = 0, h = 0;
     Result<std::vector<std::uint8_t>> read = ImageWriter::readRgba8(path, w, h);
@@ -44,7 +46,9 @@ void roundTrip(const std::string& name, bool opaque) {
     fs::remove_all(folder);
 }
 
-TEST(ImageWriter, WritesAtomicallyAndReadsBack) { roundTrip("opaque", true); }
+TEST(ImageWriter, WritesAtomicallyAndReadsBack) {
+    roundTrip("opaque", true);
+}
 
 TEST(ImageWriter, TranslucentPixelsReadBackUnchanged) {
     roundTrip("translucent", false);
@@ -57,7 +61,8 @@ TEST(ImageWriter, ParentIsARegularFile) {
     const fs::path path = file / "image.png";
     const Status written = ImageWriter::writeRgba8(path, 1, 1, {0, 0, 0, 255});
     ASSERT_FALSE(written);
-    EXPECT_NE(written.error().message.find(path.string()), std::string::npos) << written.error().message;
+    EXPECT_NE(written.error().message.find(path.string()), std::string::npos)
+        << written.error().message;
     EXPECT_EQ(fs::file_size(file), 1u);
     fs::remove_all(folder.parent_path());
 }
@@ -69,6 +74,50 @@ TEST(ImageWriter, ReadingAMissingFileFailsWithThePath) {
     ASSERT_FALSE(read);
     EXPECT_NE(read.error().message.find(path.string()), std::string::npos) << read.error().message;
     fs::remove_all(path.parent_path().parent_path());
+}
+
+TEST(ImageWriter, LinearExrKeepsValuesAndMetadataAndClampsToHalf) {
+    const fs::path folder = scratch("exr");
+    LinearImage image(3, 2, 0.25f, 1.5f, 7.0f, 1.0f);
+    image.at(2, 1)[0] = 1.0e6f;  // beyond half: stored as the largest half, not infinity
+    ImageMetadata metadata;
+    metadata.set("sylva:scenario", "today");
+    metadata.set("sylva:time", "2024-06-21T09:00:00-03:00");
+    const fs::path path = folder / "radiance.EXR";
+    EXPECT_TRUE(ImageWriter::isExr(path));
+    EXPECT_FALSE(ImageWriter::isExr(folder / "radiance.png"));
+    const Status written = ImageWriter::writeLinear(path, image, metadata);
+    ASSERT_TRUE(written) << written.error().message;
+    Result<LinearImage> read = ImageWriter::readLinear(path);
+    ASSERT_TRUE(read) << read.error().message;
+    ASSERT_EQ(read.value().width, 3);
+    EXPECT_FLOAT_EQ(read.value().at(0, 0)[0], 0.25f);  // exact in half
+    EXPECT_FLOAT_EQ(read.value().at(0, 0)[1], 1.5f);
+    EXPECT_FLOAT_EQ(read.value().at(1, 1)[2], 7.0f);
+    EXPECT_FLOAT_EQ(read.value().at(2, 1)[0], 65504.0f);
+    Result<ImageMetadata> stored =
+        ImageWriter::readMetadata(path, {"sylva:scenario", "sylva:time", "sylva:none"});
+    ASSERT_TRUE(stored) << stored.error().message;
+    ASSERT_EQ(stored.value().attributes.size(), 2u);
+    EXPECT_EQ(*stored.value().find("sylva:scenario"), "today");
+    EXPECT_EQ(*stored.value().find("sylva:time"), "2024-06-21T09:00:00-03:00");
+    for (const auto& entry : fs::directory_iterator(folder)) {
+        EXPECT_NE(entry.path().filename().string().rfind(".sylva-", 0), 0u) << entry.path();
+    }
+    fs::remove_all(folder.parent_path());
+}
+
+TEST(ImageWriter, PngCarriesMetadataAsText) {
+    const fs::path folder = scratch("pngtext");
+    ImageMetadata metadata;
+    metadata.set("sylva:camera", "beach");
+    const fs::path path = folder / "image.png";
+    ASSERT_TRUE(ImageWriter::writeRgba8(path, 1, 1, {1, 2, 3, 255}, metadata));
+    Result<ImageMetadata> stored = ImageWriter::readMetadata(path, {"sylva:camera"});
+    ASSERT_TRUE(stored) << stored.error().message;
+    ASSERT_NE(stored.value().find("sylva:camera"), nullptr);
+    EXPECT_EQ(*stored.value().find("sylva:camera"), "beach");
+    fs::remove_all(folder.parent_path());
 }
 
 }  // namespace

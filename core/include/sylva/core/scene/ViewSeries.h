@@ -10,11 +10,21 @@
 // camera, or the path for path frames), {path}, {frame} (5 digits), {scenario} (for
 // comparison images: the compare/blend block's name), {time} (2024-06-21T0900-0300)
 // and {time:FORMAT} with %Y %m %d %H %M %S %z of the time as written (its own zone).
-// A series that contains comparisons must put {scenario} into its template.
+// A series that contains comparisons must put {scenario} into its template. A blend
+// with `steps = N` (N ≥ 2) is a sequence of N images at t = 0, 1/(N−1), … 1; its
+// template needs {step} (000, 001, …) or {t} (0.000 … 1.000). Placeholders that do not
+// apply to a job ({time} without times, {step} and {t} outside blend sequences,
+// {frame} for cameras expands to 00000) vanish.
+//
+// A template ending in .mp4 makes one video per path (and scenario, time, comparison):
+// its frames are rendered as PNGs into a hidden folder next to the video
+// (".NAME.mp4.frames/00000.png"), then a Video job encodes them. Such a views block may
+// only hold paths, and its template must not contain {frame}.
 #pragma once
 
 #include <cstddef>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,7 +35,7 @@
 
 namespace sylva {
 
-enum class RenderJobKind { Image, Compare, Blend };
+enum class RenderJobKind { Image, Compare, Blend, Video };
 
 struct RenderJob {
     RenderJobKind kind = RenderJobKind::Image;
@@ -40,8 +50,18 @@ struct RenderJob {
     std::filesystem::path output;  // output folder / expanded template
     // Compare/Blend: indices (into the full job list) of the two images compared.
     std::size_t first = 0, second = 0;
-    std::size_t index = 0;  // position in the full list (shards keep it)
-    std::size_t group = 0;  // viewpoint-and-time group, in order of first appearance
+    // Blend: the mix amount (the block's `amount`, or step / (steps − 1) of a sequence)
+    // and the step of a sequence (-1 for a single blend image).
+    double blendAmount = 0.5;
+    int step = -1;
+    // Video: the jobs of its frames in order, and the frame rate. Frames of a video
+    // carry the index of their Video job.
+    std::vector<std::size_t> frames;
+    double framesPerSecond = 0;
+    std::optional<std::size_t> video;
+    bool videoFrame = false;  // a frame of a video (set before the group is chosen)
+    std::size_t index = 0;    // position in the full list (shards keep it)
+    std::size_t group = 0;    // viewpoint-and-time group, in order of first appearance
 };
 
 class ViewSeries {

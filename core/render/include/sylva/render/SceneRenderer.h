@@ -36,6 +36,8 @@ struct RenderSettings {
     // image is then independent of thread timing); interactive use draws what is
     // ready and lets the provider's workers catch up (seed 001 §4.7).
     bool waitForTiles = true;
+    // Also read back the linear radiance (Image::radiance), e.g. for EXR output.
+    bool linearOutput = false;
     VegetationSettings vegetation;
     // Plants handed in directly (tests, benchmarks), drawn with the species of
     // vegetation(); the `plants` layers of the scenario are streamed besides.
@@ -46,6 +48,9 @@ struct Image {
     int width = 0;
     int height = 0;
     std::vector<std::uint8_t> pixels;  // RGBA8, sRGB, rows top to bottom
+    // With RenderSettings::linearOutput: RGBA floats, linear radiance × exposure (before
+    // tone mapping), alpha 1, rows top to bottom; `pixels` = sRGB(1 − exp(−radiance)).
+    std::vector<float> radiance;
 };
 
 struct RenderStatistics {
@@ -81,7 +86,7 @@ public:
 
 private:
     SceneRenderer() = default;
-    Status ensureTargets(int width, int height);
+    Status ensureTargets(int width, int height, bool linearOutput);
     // The stream layers of the scenario's plants sources; registers each species'
     // asset with the vegetation renderer on first use (building it may take seconds).
     Result<std::vector<VegetationStreamLayer>> vegetationLayers(const TerrainLayers& layers);

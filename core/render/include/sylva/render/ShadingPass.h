@@ -28,7 +28,8 @@ public:
     ~ShadingPass();
 
     // Reads `gbuffer` (attachments 0 albedo, 1 normal, reversed-Z depth) and writes
-    // `target` (attachment 0, RGBA8 sRGB-encoded). `near` and `projection` as used
+    // `target` (attachment 0, RGBA8 sRGB-encoded; attachment 1 if present, a float
+    // format: linear radiance × exposure, before tone mapping). `near` and `projection` as used
     // to draw the G-buffer.
     void run(const Framebuffer& gbuffer, const Framebuffer& target, const Camera& camera,
              const glm::dmat4& projection, double near, const ShadingSettings& settings);
