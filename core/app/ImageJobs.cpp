@@ -41,7 +41,9 @@ Result<RenderSetup> makeRenderSetup(const ProjectModel& model, int overrideWidth
     setup.terrain.maxLevel = static_cast<int>(renderBlock.optionalNumber("max_level").value_or(24));
     setup.cacheMegabytes =
         static_cast<std::size_t>(renderBlock.optionalNumber("cache_mb").value_or(1024));
-    const std::string vegetation = renderBlock.string("vegetation", "lod");
+    const Value* vegetationValue = renderBlock.value("vegetation");
+    const std::string vegetation =
+        vegetationValue && vegetationValue->get<Word>() ? vegetationValue->get<Word>()->text : "lod";
     settings.vegetation.method = vegetation == "mesh"         ? VegetationMethod::Mesh
                                  : vegetation == "billboards" ? VegetationMethod::Billboard
                                                               : VegetationMethod::Lod;
