@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <string>
 
+#include "GoldenImage.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/scene/BlockReader.h"
@@ -29,36 +30,6 @@ namespace {
 constexpr int kWidth = 320;
 constexpr int kHeight = 180;
 
-struct Comparison {
-    double rmse = 0;
-    int maxError = 0;
-};
-
-Comparison compare(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b,
-                   std::vector<std::uint8_t>* difference) {
-    Comparison result;
-    double sum = 0;
-    if (difference) {
-        difference->assign(a.size(), 255);
-    }
-    for (std::size_t i = 0; i < a.size(); i += 4) {
-        int pixelError = 0;
-        for (int c = 0; c < 3; ++c) {
-            const int d = std::abs(int(a[i + c]) - int(b[i + c]));
-            sum += double(d) * d;
-            pixelError = std::max(pixelError, d);
-        }
-        result.maxError = std::max(result.maxError, pixelError);
-        if (difference) {
-            const auto v = static_cast<std::uint8_t>(std::min(255, pixelError * 8));
-            (*difference)[i] = v;
-            (*difference)[i + 1] = v;
-            (*difference)[i + 2] = v;
-        }
-    }
-    result.rmse = std::sqrt(sum / (double(a.size()) / 4 * 3));
-    return result;
-}
 
 class ProjectGolden : public ::testing::Test {
 protected:
@@ -119,29 +90,7 @@ protected:
 
     static void checkGolden(const std::string& name) {
         const Image image = render(name);
-        ASSERT_EQ(image.pixels.size(), std::size_t(kWidth) * kHeight * 4);
-        const std::filesystem::path golden =
-            std::filesystem::path(SYLVA_TEST_DATA_DIR) / "render" / "goldens" / (prefix_ + name + ".png");
-        const std::filesystem::path outputs = std::filesystem::path(SYLVA_TEST_OUTPUT_DIR);
-        const char* update = std::getenv("SYLVA_UPDATE_GOLDENS");
-        if (update != nullptr && std::string(update) == "1") {
-            ASSERT_TRUE(ImageWriter::writeRgba8(golden, kWidth, kHeight, image.pixels));
-            GTEST_SKIP() << "golden image updated: " << golden;
-        }
-        int width = 0, height = 0;
-        Result<std::vector<std::uint8_t>> expected = ImageWriter::readRgba8(golden, width, height);
-        ASSERT_TRUE(expected) << expected.error().message << " (create it with `make goldens`)";
-        ASSERT_EQ(width, kWidth);
-        ASSERT_EQ(height, kHeight);
-        std::vector<std::uint8_t> difference;
-        const Comparison c = compare(image.pixels, expected.value(), &difference);
-        const bool ok = c.rmse <= 2.0 && c.maxError <= 96;
-        if (!ok) {
-            (void)ImageWriter::writeRgba8(outputs / (prefix_ + name + ".actual.png"), kWidth, kHeight, image.pixels);
-            (void)ImageWriter::writeRgba8(outputs / (prefix_ + name + ".diff.png"), kWidth, kHeight, difference);
-        }
-        EXPECT_TRUE(ok) << name << ": RMSE " << c.rmse << " (limit 2.0), max error " << c.maxError
-                        << " (limit 96); actual and diff written to " << outputs;
+        golden::checkGolden(prefix_ + name, kWidth, kHeight, image.pixels);
     }
 
     // No holes: every pixel whose ray hits the ellipsoid (shrunk by 2 km, more than
