@@ -152,7 +152,6 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
         }
         batches.insert(batches.end(), streamed.value().begin(), streamed.value().end());
         statistics_.vegetationStream = vegetationStream_.statistics();
-        gbuffer_.bind();  // producing tiles may have touched GL state of no one, but be sure
     }
     if (!batches.empty()) {
         vegetation_->draw(batches, camera, projection, near, settings.width, settings.height,

@@ -347,13 +347,13 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches, 
         const SpeciesLod& lod = lods_[run.species];
         if (run.kind == DrawRun::Kind::Mesh) {
             const float maximum = handover ? lod.meshError : kInfinity;
-            drawMeshes(species.mesh, run, glm::vec2(0.0f, maximum), settings);
+            drawMeshes(species.mesh, run, glm::vec2(0.0f, maximum));
             statistics_.meshInstances += run.instanceCount;
         } else if (run.kind == DrawRun::Kind::Billboard && run.bucket < species.billboardLevels.size()) {
             const std::size_t level = run.bucket;
             const float minimum = lod.billboardError[level];
             const float maximum = level + 1 < lod.billboardError.size() ? lod.billboardError[level + 1] : kInfinity;
-            drawMeshes(species.billboardLevels[level], run, glm::vec2(minimum, maximum), settings);
+            drawMeshes(species.billboardLevels[level], run, glm::vec2(minimum, maximum));
             statistics_.billboardInstances += run.instanceCount;
         }
     }
@@ -361,7 +361,7 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches, 
 }
 
 void VegetationRenderer::drawMeshes(const std::vector<std::unique_ptr<VegetationMesh>>& meshes,
-                                    const DrawRun& run, glm::vec2 interval, const VegetationSettings&) {
+                                    const DrawRun& run, glm::vec2 interval) {
     meshProgram_.setVec2("uInterval", interval);
     for (const std::unique_ptr<VegetationMesh>& mesh : meshes) {
         meshProgram_.setVec4("uBaseColor", mesh->baseColor);

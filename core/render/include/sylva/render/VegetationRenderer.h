@@ -80,7 +80,7 @@ private:
     VegetationRenderer() = default;
     struct Species;
     void drawMeshes(const std::vector<std::unique_ptr<VegetationMesh>>& meshes, const DrawRun& run,
-                    glm::vec2 interval, const VegetationSettings& settings);
+                    glm::vec2 interval);
 
     ShaderProgram ellipsoidProgram_;
     ShaderProgram lineProgram_;
