@@ -17,10 +17,28 @@ namespace {
 // errorMaximum exceeds `error`: the prefix drawn at that error.
 template <typename Primitive>
 std::uint32_t prefixAbove(const std::vector<Primitive>& primitives, float error) {
-    const auto end = std::partition_point(
-        primitives.begin(), primitives.end(),
-        [error](const Primitive& p) { return p.errorMaximum > error; });
+    const auto end =
+        std::partition_point(primitives.begin(), primitives.end(),
+                             [error](const Primitive& p) { return p.errorMaximum > error; });
     return static_cast<std::uint32_t>(end - primitives.begin());
+}
+
+// bucketOf for the per-instance pass: log2 from the float's exponent and a cubic for the
+// mantissa (off by at most 0.5 % of a bucket near a boundary: harmless, the prefixes are
+// widened by half the transition band, 78 % of a bucket's width at the default band).
+int fastBucketOf(float error, float smallestError) {
+    const float ratio = error / smallestError;
+    if (!(ratio > 1.0f)) {
+        return 0;
+    }
+    const std::uint32_t bits = std::bit_cast<std::uint32_t>(ratio);
+    const float exponent = float(int(bits >> 23) - 127);
+    const float m = std::bit_cast<float>((bits & 0x007FFFFFu) | 0x3F800000u) - 1.0f;  // [0, 1)
+    // log2(1 + m) on [0, 1): cubic through both ends, max error 0.0016.
+    const float log2Mantissa = m * (1.4333f + m * (-0.6110f + m * 0.1777f));
+    constexpr float kBucketsPerOctave = 3.10628372f;  // 1 / log2(1.25)
+    const int bucket = int((exponent + log2Mantissa) * kBucketsPerOctave);
+    return std::min(bucket, LodSelector::kBucketCount - 1);
 }
 
 }  // namespace
@@ -63,10 +81,22 @@ SpeciesLod LodSelector::describe(const PlantAsset& asset, double transitionBand)
     const double widen = std::exp(-0.5 * transitionBand);
     species.ellipsoidPrefix.resize(kBucketCount);
     species.linePrefix.resize(kBucketCount);
+    species.ellipsoidRadius.assign(kBucketCount, 0.0f);
     for (int b = 0; b < kBucketCount; ++b) {
         const float error = float(bucketLowerError(b) * widen);
         species.ellipsoidPrefix[b] = prefixAbove(lod.ellipsoids, error);
         species.linePrefix[b] = prefixAbove(lod.lines, error);
+        // Visible in the bucket: errorMinimum below the bucket's upper end widened by half
+        // the band (the last bucket has no upper end).
+        const double upper = b + 1 < kBucketCount ? bucketLowerError(b + 1) / widen
+                                                  : std::numeric_limits<double>::infinity();
+        for (std::uint32_t i = 0; i < species.ellipsoidPrefix[b]; ++i) {
+            const LodEllipsoid& e = lod.ellipsoids[i];
+            if (double(e.errorMinimum) < upper) {
+                species.ellipsoidRadius[b] = std::max(species.ellipsoidRadius[b],
+                                                      std::max({e.radii.x, e.radii.y, e.radii.z}));
+            }
+        }
     }
     return species;
 }
@@ -77,6 +107,7 @@ InstanceBatch LodSelector::makeBatch(const glm::dvec3& origin,
     InstanceBatch batch;
     batch.origin = origin;
     batch.instances.reserve(placements.size());
+    batch.spheres.reserve(placements.size());
     for (const InstancePlacement& p : placements) {
         SYLVA_CHECK(p.species < species.size());
         const double sinLat = std::sin(p.latitude), cosLat = std::cos(p.latitude);
@@ -106,6 +137,7 @@ InstanceBatch LodSelector::makeBatch(const glm::dvec3& origin,
         h ^= std::bit_cast<std::uint32_t>(instance.base.z) * 0xC2B2AE3Du;
         instance.hash = h ^ (h >> 15);
         batch.instances.push_back(instance);
+        batch.spheres.emplace_back(instance.center, instance.radius);
     }
     if (!batch.instances.empty()) {
         glm::vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
@@ -115,8 +147,9 @@ InstanceBatch LodSelector::makeBatch(const glm::dvec3& origin,
         }
         batch.boundsCenter = 0.5f * (low + high);
         for (const InstanceBatch::Instance& instance : batch.instances) {
-            batch.boundsRadius = std::max(batch.boundsRadius, glm::distance(batch.boundsCenter, instance.center) +
-                                                                  instance.radius);
+            batch.boundsRadius =
+                std::max(batch.boundsRadius,
+                         glm::distance(batch.boundsCenter, instance.center) + instance.radius);
             batch.largestInstanceRadius = std::max(batch.largestInstanceRadius, instance.radius);
         }
     }
@@ -174,15 +207,18 @@ void LodSelector::select(const std::vector<const InstanceBatch*>& allBatches,
     std::size_t considered = 0;
     for (const InstanceBatch* batch : allBatches) {
         considered += batch->instances.size();
-        const glm::vec3 center(rotation * (batch->origin - camera.position + glm::dvec3(batch->boundsCenter)));
+        const glm::vec3 center(rotation *
+                               (batch->origin - camera.position + glm::dvec3(batch->boundsCenter)));
         const float r = batch->boundsRadius;
         bool inside = center.z <= r - float(settings.near);
         for (int p = 0; p < 4 && inside; ++p) {
             inside = glm::dot(settings.sidePlanes[p], center) >= -r;
         }
         const float nearest = std::max(glm::length(center) - r, 0.0f);
-        const bool large = 2.0f * batch->largestInstanceRadius >= float(settings.minimumPixels * nearest * errorPerMetre);
-        const bool withinDistance = settings.maximumDistance <= 0.0 || nearest <= settings.maximumDistance;
+        const bool large = 2.0f * batch->largestInstanceRadius >=
+                           float(settings.minimumPixels * nearest * errorPerMetre);
+        const bool withinDistance =
+            settings.maximumDistance <= 0.0 || nearest <= settings.maximumDistance;
         if (inside && large && withinDistance && !batch->instances.empty()) {
             batches.push_back(batch);
         }
@@ -198,21 +234,30 @@ void LodSelector::select(const std::vector<const InstanceBatch*>& allBatches,
     batchStart[batches.size()] = total;
     out.consideredInstances = considered;
 
-    const int chunks = std::max(1, std::min<int>(int(std::thread::hardware_concurrency()) * 4,
-                                                 int(total / 4096) + 1));
-    std::vector<std::vector<Decision>> decided(chunks);
+    const int chunks = std::max(
+        1, std::min<int>(int(std::thread::hardware_concurrency()) * 4, int(total / 4096) + 1));
+    // Scratch kept between frames (per calling thread): fresh buffers would be paged in
+    // again every frame. (The lambdas below run on other threads: they must see this
+    // thread's buffers through the references, never name the thread_local itself.)
+    thread_local std::vector<std::vector<Decision>> decidedScratch;
+    std::vector<std::vector<Decision>>& decided = decidedScratch;
+    decided.resize(chunks);
+    for (std::vector<Decision>& decisions : decided) {
+        decisions.clear();
+    }
     const float near = float(settings.near);
+    const float smallestError = float(kSmallestError);
     const glm::vec3 planes[4] = {settings.sidePlanes[0], settings.sidePlanes[1],
                                  settings.sidePlanes[2], settings.sidePlanes[3]};
-    const float maximumDistance =
-        settings.maximumDistance > 0 ? float(settings.maximumDistance)
-                                     : std::numeric_limits<float>::infinity();
+    const float maximumDistance = settings.maximumDistance > 0
+                                      ? float(settings.maximumDistance)
+                                      : std::numeric_limits<float>::infinity();
     parallelFor(0, chunks, [&](int chunk) {
         const std::size_t first = total * chunk / chunks, last = total * (chunk + 1) / chunks;
         std::vector<Decision>& decisions = decided[chunk];
         decisions.reserve((last - first) / 4 + 16);
-        std::size_t b = std::upper_bound(batchStart.begin(), batchStart.end(), first) -
-                        batchStart.begin() - 1;
+        std::size_t b =
+            std::upper_bound(batchStart.begin(), batchStart.end(), first) - batchStart.begin() - 1;
         std::size_t i = first;
         while (i < last) {
             while (batchStart[b + 1] <= i) {
@@ -222,9 +267,9 @@ void LodSelector::select(const std::vector<const InstanceBatch*>& allBatches,
             const glm::vec3 originView(rotation * (batch.origin - camera.position));
             const std::size_t end = std::min(last, batchStart[b + 1]);
             for (std::size_t k = i - batchStart[b]; k < end - batchStart[b]; ++k) {
-                const InstanceBatch::Instance& instance = batch.instances[k];
-                const glm::vec3 center = originView + rotationFloat * instance.center;
-                const float r = instance.radius;
+                const glm::vec4 sphere = batch.spheres[k];
+                const glm::vec3 center = originView + rotationFloat * glm::vec3(sphere);
+                const float r = sphere.w;
                 if (center.z > r - near || glm::dot(planes[0], center) < -r ||
                     glm::dot(planes[1], center) < -r || glm::dot(planes[2], center) < -r ||
                     glm::dot(planes[3], center) < -r) {
@@ -232,17 +277,19 @@ void LodSelector::select(const std::vector<const InstanceBatch*>& allBatches,
                 }
                 const float distance = glm::length(center);
                 const float error = float(distance * errorPerMetre);
-                if (distance > maximumDistance || 2.0f * r < float(settings.minimumPixels) * error) {
+                if (distance > maximumDistance ||
+                    2.0f * r < float(settings.minimumPixels) * error) {
                     continue;
                 }
-                const SpeciesLod& lod = species[instance.species];
+                const std::uint32_t speciesIndex = batch.instances[k].species;
+                const SpeciesLod& lod = species[speciesIndex];
                 Decision d;
                 d.batch = std::uint32_t(b);
                 d.index = std::uint32_t(k);
                 d.error = error;
                 d.originView = originView;
                 d.key2 = 0xFFFF;
-                const std::uint16_t base = std::uint16_t(instance.species * kSlots);
+                const std::uint16_t base = std::uint16_t(speciesIndex * kSlots);
                 switch (settings.method) {
                     case VegetationMethod::Mesh:
                         d.key = std::uint16_t(base + kMeshSlot);
@@ -252,7 +299,7 @@ void LodSelector::select(const std::vector<const InstanceBatch*>& allBatches,
                         const bool primitives = !settings.closeUpMesh || lod.meshError <= 0.0f ||
                                                 error >= lod.meshError * fadeDown;
                         if (primitives) {
-                            d.key = std::uint16_t(base + bucketOf(error));
+                            d.key = std::uint16_t(base + fastBucketOf(error, smallestError));
                             if (mesh) {
                                 d.key2 = std::uint16_t(base + kMeshSlot);
                             }
@@ -337,11 +384,14 @@ void LodSelector::select(const std::vector<const InstanceBatch*>& allBatches,
 
     // Pass 2 (parallel): write each decision's view transform into its slots. Each chunk
     // claims its slots serially first (cheap), then fills them in parallel.
-    std::vector<std::vector<std::uint32_t>> slots(chunks);
+    thread_local std::vector<std::vector<std::uint32_t>> slotsScratch;
+    std::vector<std::vector<std::uint32_t>>& slots = slotsScratch;
+    slots.resize(chunks);
     std::vector<std::uint32_t> cursor(start.begin(), start.end() - 1);
     for (int chunk = 0; chunk < chunks; ++chunk) {
         std::vector<std::uint32_t>& s = slots[chunk];
-        s.reserve(decided[chunk].size());
+        s.clear();
+        s.reserve(2 * decided[chunk].size());
         for (const Decision& d : decided[chunk]) {
             s.push_back(cursor[d.key]++);
             s.push_back(d.key2 != 0xFFFF ? cursor[d.key2]++ : 0xFFFFFFFFu);

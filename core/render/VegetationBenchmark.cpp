@@ -57,7 +57,9 @@ std::vector<float> luminance(const Image& image, int scale) {
         for (int x = 0; x < width; ++x) {
             double sum = 0.0;
             for (int dy = 0; dy < scale; ++dy) {
-                const std::uint8_t* row = image.pixels.data() + (std::size_t(y * scale + dy) * image.width + x * scale) * 4;
+                const std::uint8_t* row =
+                    image.pixels.data() +
+                    (std::size_t(y * scale + dy) * image.width + x * scale) * 4;
                 for (int dx = 0; dx < scale; ++dx) {
                     const std::uint8_t* p = row + dx * 4;
                     sum += 0.2126 * table[p[0]] + 0.7152 * table[p[1]] + 0.0722 * table[p[2]];
@@ -95,8 +97,10 @@ double frameError(const std::vector<float>& a, const std::vector<float>& b, int 
     for (int y0 : ys) {
         for (int x0 : xs) {
             for (int y = 0; y < kBlock; ++y) {
-                std::copy_n(a.begin() + std::ptrdiff_t(y0 + y) * width + x0, kBlock, blockA.begin() + y * kBlock);
-                std::copy_n(b.begin() + std::ptrdiff_t(y0 + y) * width + x0, kBlock, blockB.begin() + y * kBlock);
+                std::copy_n(a.begin() + std::ptrdiff_t(y0 + y) * width + x0, kBlock,
+                            blockA.begin() + y * kBlock);
+                std::copy_n(b.begin() + std::ptrdiff_t(y0 + y) * width + x0, kBlock,
+                            blockB.begin() + y * kBlock);
             }
             sum += multiScaleRmse(multiScaleSquaredErrors(blockA, blockB, kBlock));
         }
@@ -119,18 +123,20 @@ Camera cameraAt(const std::vector<PathKey>& keys, double t) {
     const auto mix = [u](double x, double y) { return x + (y - x) * u; };
     Camera c;
     c.geodetic.latitude = kLatitude + mix(a.north, b.north) / kMetresPerRadian;
-    c.geodetic.longitude = kLongitude + mix(a.east, b.east) / (kMetresPerRadian * std::cos(kLatitude));
+    c.geodetic.longitude =
+        kLongitude + mix(a.east, b.east) / (kMetresPerRadian * std::cos(kLatitude));
     c.geodetic.height = kGround + mix(a.height, b.height);
     c.position = Ellipsoid::toEcef(c.geodetic);
-    c.axes = Camera::axesFromAngles(c.geodetic, mix(a.heading, b.heading), mix(a.pitch, b.pitch), 0.0);
+    c.axes =
+        Camera::axesFromAngles(c.geodetic, mix(a.heading, b.heading), mix(a.pitch, b.pitch), 0.0);
     c.verticalFov = 50.0 * kDegree;
     return c;
 }
 
 // Forest groups of about 1,000 trees each (jittered 7 m grid in a disc of ~125 m radius),
 // group centres on a jittered grid `spacing` metres apart around the origin.
-std::vector<InstanceBatch> makeForest(int trees, std::uint32_t species, const std::vector<SpeciesLod>& lods,
-                                      std::uint32_t seed) {
+std::vector<InstanceBatch> makeForest(int trees, std::uint32_t species,
+                                      const std::vector<SpeciesLod>& lods, std::uint32_t seed) {
     std::mt19937 random(seed);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     const int groups = std::max(1, (trees + 999) / 1000);
@@ -141,9 +147,9 @@ std::vector<InstanceBatch> makeForest(int trees, std::uint32_t species, const st
     for (int i = 0; i < side * side; ++i) {
         cellsByDistance.emplace_back(i % side - side / 2, i / side - side / 2);
     }
-    std::stable_sort(cellsByDistance.begin(), cellsByDistance.end(), [](glm::ivec2 a, glm::ivec2 b) {
-        return a.x * a.x + a.y * a.y < b.x * b.x + b.y * b.y;
-    });
+    std::stable_sort(
+        cellsByDistance.begin(), cellsByDistance.end(),
+        [](glm::ivec2 a, glm::ivec2 b) { return a.x * a.x + a.y * a.y < b.x * b.x + b.y * b.y; });
     std::vector<InstanceBatch> batches;
     int remaining = trees;
     for (int g = 0; g < groups; ++g) {
@@ -175,7 +181,8 @@ std::vector<InstanceBatch> makeForest(int trees, std::uint32_t species, const st
             }
         }
         const glm::dvec3 origin = Ellipsoid::toEcef(
-            {kLatitude + gy / kMetresPerRadian, kLongitude + gx / (kMetresPerRadian * std::cos(kLatitude)), kGround});
+            {kLatitude + gy / kMetresPerRadian,
+             kLongitude + gx / (kMetresPerRadian * std::cos(kLatitude)), kGround});
         batches.push_back(LodSelector::makeBatch(origin, placements, lods));
     }
     return batches;
@@ -191,9 +198,12 @@ std::vector<const InstanceBatch*> pointers(const std::vector<InstanceBatch>& bat
 
 const char* methodName(VegetationMethod method) {
     switch (method) {
-        case VegetationMethod::Lod: return "lod";
-        case VegetationMethod::Billboard: return "bbc";
-        case VegetationMethod::Mesh: return "mesh";
+        case VegetationMethod::Lod:
+            return "lod";
+        case VegetationMethod::Billboard:
+            return "bbc";
+        case VegetationMethod::Mesh:
+            return "mesh";
     }
     return "?";
 }
@@ -205,15 +215,16 @@ std::string VegetationBenchmarkResult::json() const {
     bool first = true;
     for (const auto& [name, value] : metrics) {
         char buffer[128];
-        std::snprintf(buffer, sizeof buffer, "%s\"%s\":%.6g", first ? "" : ",", name.c_str(), value);
+        std::snprintf(buffer, sizeof buffer, "%s\"%s\":%.6g", first ? "" : ",", name.c_str(),
+                      value);
         out += buffer;
         first = false;
     }
     return out + "}}";
 }
 
-Result<VegetationBenchmarkResult> runVegetationBenchmark(const ShaderLibrary& library,
-                                                         const VegetationBenchmarkOptions& options) {
+Result<VegetationBenchmarkResult> runVegetationBenchmark(
+    const ShaderLibrary& library, const VegetationBenchmarkOptions& options) {
     VegetationBenchmarkResult result;
     const auto log = [](const char* text) { std::fprintf(stderr, "bench vegetation: %s\n", text); };
 
@@ -234,7 +245,8 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(const ShaderLibrary& li
     if (!lod) {
         return lod.error();
     }
-    if (Status billboards = addBillboardClouds(model.value(), lod.value(), PlantLodOptions{}); !billboards) {
+    if (Status billboards = addBillboardClouds(model.value(), lod.value(), PlantLodOptions{});
+        !billboards) {
         return billboards.error();
     }
     auto asset = std::make_shared<PlantAsset>();
@@ -248,7 +260,8 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(const ShaderLibrary& li
     const TerrainLayers layers{&elevation, &color, &normals, {}};
     TileEvaluator evaluator(TileFormat{256, 2});
     TerrainSettings terrainSettings;
-    Result<std::unique_ptr<SceneRenderer>> created = SceneRenderer::create(library, terrainSettings);
+    Result<std::unique_ptr<SceneRenderer>> created =
+        SceneRenderer::create(library, terrainSettings);
     if (!created) {
         return created.error();
     }
@@ -272,7 +285,8 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(const ShaderLibrary& li
     RenderSettings settings;
     settings.width = options.width;
     settings.height = options.height;
-    settings.sunDirection = glm::normalize(Ellipsoid::surfaceNormal(kLatitude - 0.5, kLongitude - 0.6));
+    settings.sunDirection =
+        glm::normalize(Ellipsoid::surfaceNormal(kLatitude - 0.5, kLongitude - 0.6));
     settings.atmosphere = true;
     settings.ocean = false;
 
@@ -290,7 +304,8 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(const ShaderLibrary& li
         return image;
     };
 
-    const VegetationMethod methods[3] = {VegetationMethod::Lod, VegetationMethod::Billboard, VegetationMethod::Mesh};
+    const VegetationMethod methods[3] = {VegetationMethod::Lod, VegetationMethod::Billboard,
+                                         VegetationMethod::Mesh};
     std::map<VegetationMethod, std::vector<double>> plantMilliseconds;
     std::map<VegetationMethod, std::vector<double>> referenceError, temporalError;
     const bool haveBillboards = !lods[species].billboardError.empty();
@@ -312,7 +327,7 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(const ShaderLibrary& li
         if (Result<Image> empty = renderTimed(c, {}, VegetationMethod::Lod, bare); !empty) {
             return empty.error();
         }
-        const bool sampled = frame % options.framesPerSegment == 0 && frame > 0;
+        const bool sampled = frame % options.framesPerSegment == 0 && frame > 0 && options.mesh;
         std::vector<float> reference;
         if (sampled) {
             settings.width = options.width * options.referenceScale;
@@ -326,7 +341,10 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(const ShaderLibrary& li
             reference = luminance(image.value(), options.referenceScale);
         }
         for (VegetationMethod method : methods) {
-            if (method == VegetationMethod::Billboard && !haveBillboards) {
+            if ((method == VegetationMethod::Billboard &&
+                 (!haveBillboards || !options.billboards)) ||
+                (method == VegetationMethod::Lod && !options.lod) ||
+                (method == VegetationMethod::Mesh && !options.mesh)) {
                 continue;
             }
             Result<Image> image = renderTimed(c, pointers(forest), method, seconds);
@@ -334,23 +352,36 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(const ShaderLibrary& li
                 return image.error();
             }
             plantMilliseconds[method].push_back(std::max(0.0, seconds - bare) * 1000.0);
-            if (!sampled) {
-                continue;
-            }
-            const std::vector<float> current = luminance(image.value(), 1);
-            referenceError[method].push_back(frameError(current, reference, options.width, options.height));
-            Result<Image> next = renderTimed(cameraAt(keys, t + nextFrame), pointers(forest), method, seconds);
-            if (!next) {
-                return next.error();
-            }
-            temporalError[method].push_back(
-                frameError(current, luminance(next.value(), 1), options.width, options.height));
+            const VegetationStatistics& drawn = renderer.vegetation().statistics();
+            char detail[256];
+            std::snprintf(detail, sizeof detail,
+                          "  %s: %.0f ms (frame without plants %.0f ms); %zu instances, %zu "
+                          "ellipsoids, %zu lines, "
+                          "%zu meshes, %zu billboard clouds, select %.1f ms, %zu quad passes",
+                          methodName(method), plantMilliseconds[method].back(), bare * 1000.0,
+                          drawn.drawnInstances, drawn.ellipsoids, drawn.lines, drawn.meshInstances,
+                          drawn.billboardInstances, drawn.selectSeconds * 1000.0,
+                          drawn.quadPassRuns);
+            log(detail);
             if (!options.framesFolder.empty()) {
                 char name[64];
                 std::snprintf(name, sizeof name, "/frame%02d_%s.png", frame, methodName(method));
                 (void)ImageWriter::writeRgba8(options.framesFolder + name, image.value().width,
                                               image.value().height, image.value().pixels);
             }
+            if (!sampled) {
+                continue;
+            }
+            const std::vector<float> current = luminance(image.value(), 1);
+            referenceError[method].push_back(
+                frameError(current, reference, options.width, options.height));
+            Result<Image> next =
+                renderTimed(cameraAt(keys, t + nextFrame), pointers(forest), method, seconds);
+            if (!next) {
+                return next.error();
+            }
+            temporalError[method].push_back(
+                frameError(current, luminance(next.value(), 1), options.width, options.height));
         }
     }
     const auto mean = [](const std::vector<double>& v) {
@@ -360,25 +391,33 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(const ShaderLibrary& li
         }
         return v.empty() ? 0.0 : s / double(v.size());
     };
-    result.metrics["lod_ms_median"] = median(plantMilliseconds[VegetationMethod::Lod]);
-    result.metrics["mesh_ms_median"] = median(plantMilliseconds[VegetationMethod::Mesh]);
-    result.metrics["rmse_ref_lod"] = mean(referenceError[VegetationMethod::Lod]);
-    result.metrics["temporal_lod"] = mean(temporalError[VegetationMethod::Lod]);
-    result.metrics["rmse_ref_mesh"] = mean(referenceError[VegetationMethod::Mesh]);
-    result.metrics["temporal_mesh"] = mean(temporalError[VegetationMethod::Mesh]);
-    result.metrics["lod_vs_mesh"] = result.metrics["mesh_ms_median"] / std::max(result.metrics["lod_ms_median"], 1e-6);
-    if (haveBillboards) {
-        result.metrics["bbc_ms_median"] = median(plantMilliseconds[VegetationMethod::Billboard]);
-        result.metrics["rmse_ref_bbc"] = mean(referenceError[VegetationMethod::Billboard]);
-        result.metrics["temporal_bbc"] = mean(temporalError[VegetationMethod::Billboard]);
-        result.metrics["lod_vs_bbc"] = result.metrics["bbc_ms_median"] / std::max(result.metrics["lod_ms_median"], 1e-6);
+    // Metrics of the methods that ran (all of them unless the options leave some out).
+    const auto ran = [&](VegetationMethod method) { return !plantMilliseconds[method].empty(); };
+    for (VegetationMethod method : methods) {
+        if (!ran(method)) {
+            continue;
+        }
+        const std::string name = methodName(method);
+        result.metrics[name + "_ms_median"] = median(plantMilliseconds[method]);
+        if (!referenceError[method].empty()) {
+            result.metrics["rmse_ref_" + name] = mean(referenceError[method]);
+            result.metrics["temporal_" + name] = mean(temporalError[method]);
+        }
     }
+    const auto ratio = [&](const char* key, VegetationMethod slower) {
+        if (ran(VegetationMethod::Lod) && ran(slower)) {
+            result.metrics[key] = result.metrics[std::string(methodName(slower)) + "_ms_median"] /
+                                  std::max(result.metrics["lod_ms_median"], 1e-6);
+        }
+    };
+    ratio("lod_vs_mesh", VegetationMethod::Mesh);
+    ratio("lod_vs_bbc", VegetationMethod::Billboard);
     result.metrics["trees"] = options.trees;
     result.metrics["frames"] = frames;
     result.metrics["lod_ellipsoids"] = double(asset->lod.ellipsoids.size());
     result.metrics["lod_lines"] = double(asset->lod.lines.size());
 
-    if (options.scaling) {
+    if (options.scaling && options.lod) {
         for (const int count : {100000, 1000000}) {
             char line[96];
             std::snprintf(line, sizeof line, "scaling: %d instances", count);
@@ -390,7 +429,8 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(const ShaderLibrary& li
                 double bare = 0.0, seconds = 0.0;
                 (void)renderTimed(c, {}, VegetationMethod::Lod, seconds);
                 (void)renderTimed(c, {}, VegetationMethod::Lod, bare);
-                Result<Image> image = renderTimed(c, pointers(many), VegetationMethod::Lod, seconds);
+                Result<Image> image =
+                    renderTimed(c, pointers(many), VegetationMethod::Lod, seconds);
                 if (!image) {
                     return image.error();
                 }
@@ -401,7 +441,8 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(const ShaderLibrary& li
                 // The selection alone (CPU), from every segment's midpoint.
                 LodSelectionSettings selection;
                 selection.pixelAngle = 2.0 * std::tan(25.0 * kDegree) / options.height;
-                LodSelector::setFrustum(selection, 50.0 * kDegree, double(options.width) / options.height);
+                LodSelector::setFrustum(selection, 50.0 * kDegree,
+                                        double(options.width) / options.height);
                 LodSelection out;
                 std::vector<double> selectMilliseconds;
                 for (int run = 0; run < 3; ++run) {
@@ -409,9 +450,9 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(const ShaderLibrary& li
                         const Camera c = cameraAt(keys, double(segment) - 0.5);
                         const auto start = std::chrono::steady_clock::now();
                         LodSelector::select(pointers(many), lods, c, selection, out);
-                        selectMilliseconds.push_back(
-                            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                                .count());
+                        selectMilliseconds.push_back(std::chrono::duration<double, std::milli>(
+                                                         std::chrono::steady_clock::now() - start)
+                                                         .count());
                     }
                 }
                 result.metrics["select_ms_1m"] = median(selectMilliseconds);

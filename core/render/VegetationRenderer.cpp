@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <numbers>
 
 #include "sylva/core/base/Check.h"
 
@@ -83,7 +84,8 @@ struct MeshVertex {
 };
 
 // One VegetationMesh per PlantMesh with triangles; textures as sRGB with mipmaps.
-std::vector<std::unique_ptr<VegetationMesh>> uploadModel(const PlantModel& model, GLuint instanceBuffer) {
+std::vector<std::unique_ptr<VegetationMesh>> uploadModel(const PlantModel& model,
+                                                         GLuint instanceBuffer) {
     std::vector<std::unique_ptr<VegetationMesh>> meshes;
     std::vector<GLuint> textures(model.materials.size(), 0);
     for (const PlantMesh& source : model.meshes) {
@@ -102,7 +104,8 @@ std::vector<std::unique_ptr<VegetationMesh>> uploadModel(const PlantModel& model
         glCreateBuffers(1, &mesh->indexBuffer);
         glNamedBufferStorage(mesh->vertexBuffer, GLsizeiptr(vertices.size() * sizeof(MeshVertex)),
                              vertices.data(), 0);
-        glNamedBufferStorage(mesh->indexBuffer, GLsizeiptr(source.indices.size() * sizeof(std::uint32_t)),
+        glNamedBufferStorage(mesh->indexBuffer,
+                             GLsizeiptr(source.indices.size() * sizeof(std::uint32_t)),
                              source.indices.data(), 0);
         mesh->indexCount = GLsizei(source.indices.size());
         const GLuint va = mesh->vertexArray;
@@ -126,11 +129,12 @@ std::vector<std::unique_ptr<VegetationMesh>> uploadModel(const PlantModel& model
             if (texture.width > 0 && texture.height > 0) {
                 GLuint& id = textures[std::size_t(source.material)];
                 if (id == 0) {
-                    const int levels = 1 + int(std::floor(std::log2(std::max(texture.width, texture.height))));
+                    const int levels =
+                        1 + int(std::floor(std::log2(std::max(texture.width, texture.height))));
                     glCreateTextures(GL_TEXTURE_2D, 1, &id);
                     glTextureStorage2D(id, levels, GL_SRGB8_ALPHA8, texture.width, texture.height);
-                    glTextureSubImage2D(id, 0, 0, 0, texture.width, texture.height, GL_RGBA, GL_UNSIGNED_BYTE,
-                                        texture.rgba.data());
+                    glTextureSubImage2D(id, 0, 0, 0, texture.width, texture.height, GL_RGBA,
+                                        GL_UNSIGNED_BYTE, texture.rgba.data());
                     glGenerateTextureMipmap(id);
                     glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
                     glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -155,24 +159,31 @@ const std::vector<BillboardLevel>& billboardLevels(const PlantAsset& asset) {
 
 }  // namespace
 
-Result<std::unique_ptr<VegetationRenderer>> VegetationRenderer::create(const ShaderLibrary& library) {
+Result<std::unique_ptr<VegetationRenderer>> VegetationRenderer::create(
+    const ShaderLibrary& library) {
     std::unique_ptr<VegetationRenderer> renderer(new VegetationRenderer());
     struct Program {
         ShaderProgram* target;
         const char* vertex;
         const char* fragment;
     };
-    for (const Program& p : {Program{&renderer->ellipsoidProgram_, "vegetation/ellipsoid.vert",
-                                     "vegetation/ellipsoid.frag"},
-                             Program{&renderer->lineProgram_, "vegetation/line.vert", "vegetation/line.frag"},
-                             Program{&renderer->meshProgram_, "vegetation/mesh.vert", "vegetation/mesh.frag"}}) {
-        Result<ShaderProgram> program =
-            ShaderProgram::create(library, {{GL_VERTEX_SHADER, p.vertex}, {GL_FRAGMENT_SHADER, p.fragment}});
+    for (const Program& p :
+         {Program{&renderer->ellipsoidProgram_, "vegetation/ellipsoid.vert",
+                  "vegetation/ellipsoid.frag"},
+          Program{&renderer->lineProgram_, "vegetation/line.vert", "vegetation/line.frag"},
+          Program{&renderer->meshProgram_, "vegetation/mesh.vert", "vegetation/mesh.frag"}}) {
+        Result<ShaderProgram> program = ShaderProgram::create(
+            library, {{GL_VERTEX_SHADER, p.vertex}, {GL_FRAGMENT_SHADER, p.fragment}});
         if (!program) {
             return program.error();
         }
         *p.target = std::move(program.value());
     }
+    // Ellipsoid sprites up to the driver's largest point size (llvmpipe: 255 pixels);
+    // larger ones are drawn as quads.
+    GLfloat pointSizes[2] = {1.0f, 1.0f};
+    glGetFloatv(GL_POINT_SIZE_RANGE, pointSizes);
+    renderer->maximumPointSize_ = std::max(1.0f, pointSizes[1]);
     glCreateBuffers(1, &renderer->instanceBuffer_);
     glCreateVertexArrays(1, &renderer->primitiveArray_);
     setInstanceAttributes(renderer->primitiveArray_, 0, 0);
@@ -192,7 +203,8 @@ const std::shared_ptr<const PlantAsset>& VegetationRenderer::asset(std::uint32_t
     return species_[species]->asset;
 }
 
-std::uint32_t VegetationRenderer::addSpecies(std::shared_ptr<const PlantAsset> asset, double transitionBand) {
+std::uint32_t VegetationRenderer::addSpecies(std::shared_ptr<const PlantAsset> asset,
+                                             double transitionBand) {
     SYLVA_CHECK(asset != nullptr);
     auto species = std::make_unique<Species>();
     species->asset = asset;
@@ -205,11 +217,13 @@ std::uint32_t VegetationRenderer::addSpecies(std::shared_ptr<const PlantAsset> a
     std::vector<GpuEllipsoid> ellipsoids(ellipsoidCount_ + lod.ellipsoids.size());
     std::vector<GpuLine> lines(lineCount_ + lod.lines.size());
     if (ellipsoidCount_ > 0) {
-        glGetNamedBufferSubData(ellipsoidBuffer_, 0, GLsizeiptr(ellipsoidCount_ * sizeof(GpuEllipsoid)),
+        glGetNamedBufferSubData(ellipsoidBuffer_, 0,
+                                GLsizeiptr(ellipsoidCount_ * sizeof(GpuEllipsoid)),
                                 ellipsoids.data());
     }
     if (lineCount_ > 0) {
-        glGetNamedBufferSubData(lineBuffer_, 0, GLsizeiptr(lineCount_ * sizeof(GpuLine)), lines.data());
+        glGetNamedBufferSubData(lineBuffer_, 0, GLsizeiptr(lineCount_ * sizeof(GpuLine)),
+                                lines.data());
     }
     for (std::size_t i = 0; i < lod.ellipsoids.size(); ++i) {
         const LodEllipsoid& e = lod.ellipsoids[i];
@@ -258,9 +272,9 @@ std::uint32_t VegetationRenderer::addSpecies(std::shared_ptr<const PlantAsset> a
     return std::uint32_t(species_.size() - 1);
 }
 
-void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches, const Camera& camera,
-                              const glm::dmat4& projection, double near, int pixelsWide, int pixelsHigh,
-                              const VegetationSettings& settings) {
+void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches,
+                              const Camera& camera, const glm::dmat4& projection, double near,
+                              int pixelsWide, int pixelsHigh, const VegetationSettings& settings) {
     statistics_ = {};
     if (species_.empty()) {
         return;
@@ -274,7 +288,8 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches, 
     selection.closeUpMesh = settings.closeUpMesh;
     selection.method = settings.method;
     selection.near = near;
-    LodSelector::setFrustum(selection, camera.verticalFov, double(pixelsWide) / std::max(pixelsHigh, 1));
+    LodSelector::setFrustum(selection, camera.verticalFov,
+                            double(pixelsWide) / std::max(pixelsHigh, 1));
 
     const auto selectStart = std::chrono::steady_clock::now();
     LodSelector::select(batches, lods_, camera, selection, selection_);
@@ -308,9 +323,15 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches, 
     const float band = float(settings.transitionBand);
     const bool handover = settings.method == VegetationMethod::Lod && settings.closeUpMesh;
 
-    // Ellipsoids, then lines: one instanced draw per species and bucket.
+    // Ellipsoids (point sprites, and quads for sprites too large), then lines: instanced
+    // draws per species and bucket.
     glVertexArrayVertexBuffer(primitiveArray_, 0, instanceBuffer_, 0, sizeof(DrawInstance));
     glBindVertexArray(primitiveArray_);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    const glm::vec2 viewport{float(pixelsWide), float(pixelsHigh)};
+    // Tangent of the angle between the view axis and a frustum corner.
+    const double cornerTangent =
+        selection.pixelAngle * 0.5 * std::hypot(double(pixelsWide), double(pixelsHigh));
     for (int pass = 0; pass < 2; ++pass) {
         ShaderProgram& program = pass == 0 ? ellipsoidProgram_ : lineProgram_;
         program.use();
@@ -319,6 +340,8 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches, 
         program.setFloat("uBand", band);
         if (pass == 0) {
             program.setFloat("uNormalNoise", settings.normalNoise);
+            program.setVec2("uViewport", viewport);
+            program.setFloat("uMaximumPointSize", maximumPointSize_);
         }
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, pass == 0 ? 0 : 1,
                          pass == 0 ? ellipsoidBuffer_ : lineBuffer_);
@@ -329,12 +352,29 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches, 
             }
             const Species& species = *species_[run.species];
             program.setFloat("uMeshError", handover ? lods_[run.species].meshError : 0.0f);
-            const std::uint32_t first = pass == 0 ? species.firstEllipsoid : species.firstLine;
-            glDrawArraysInstancedBaseInstance(GL_TRIANGLES, GLint(first * 6), GLsizei(count * 6),
-                                              GLsizei(run.instanceCount), run.firstInstance);
+            if (pass == 1) {
+                glDrawArraysInstancedBaseInstance(GL_TRIANGLES, GLint(species.firstLine * 6),
+                                                  GLsizei(count * 6), GLsizei(run.instanceCount),
+                                                  run.firstInstance);
+                ++statistics_.drawCalls;
+                continue;
+            }
+            program.setInt("uQuadPass", 0);
+            glDrawArraysInstancedBaseInstance(GL_POINTS, GLint(species.firstEllipsoid),
+                                              GLsizei(count), GLsizei(run.instanceCount),
+                                              run.firstInstance);
             ++statistics_.drawCalls;
+            if (mayExceedPointSize(run, selection.pixelAngle, cornerTangent, near)) {
+                program.setInt("uQuadPass", 1);
+                glDrawArraysInstancedBaseInstance(GL_TRIANGLES, GLint(species.firstEllipsoid * 6),
+                                                  GLsizei(count * 6), GLsizei(run.instanceCount),
+                                                  run.firstInstance);
+                ++statistics_.drawCalls;
+                ++statistics_.quadPassRuns;
+            }
         }
     }
+    glDisable(GL_PROGRAM_POINT_SIZE);
 
     // Meshes: the source model (close-ups, the Mesh method) and billboard-cloud levels.
     meshProgram_.use();
@@ -349,15 +389,53 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches, 
             const float maximum = handover ? lod.meshError : kInfinity;
             drawMeshes(species.mesh, run, glm::vec2(0.0f, maximum));
             statistics_.meshInstances += run.instanceCount;
-        } else if (run.kind == DrawRun::Kind::Billboard && run.bucket < species.billboardLevels.size()) {
+        } else if (run.kind == DrawRun::Kind::Billboard &&
+                   run.bucket < species.billboardLevels.size()) {
             const std::size_t level = run.bucket;
             const float minimum = lod.billboardError[level];
-            const float maximum = level + 1 < lod.billboardError.size() ? lod.billboardError[level + 1] : kInfinity;
+            const float maximum =
+                level + 1 < lod.billboardError.size() ? lod.billboardError[level + 1] : kInfinity;
             drawMeshes(species.billboardLevels[level], run, glm::vec2(minimum, maximum));
             statistics_.billboardInstances += run.instanceCount;
         }
     }
     glBindVertexArray(0);
+}
+
+bool VegetationRenderer::mayExceedPointSize(const DrawRun& run, double pixelAngle,
+                                            double cornerTangent, double near) const {
+    const SpeciesLod& lod = lods_[run.species];
+    const double radius =
+        run.bucket < lod.ellipsoidRadius.size() ? lod.ellipsoidRadius[run.bucket] : 0.0;
+    if (radius <= 0.0) {
+        return false;
+    }
+    // Every ellipsoid of an instance lies within the instance's bounding sphere, so the
+    // sprite's quad (its outline × 1.01, in front of it) is seen under a half-angle of at
+    // most beta = atan(1.01 r / nearest sphere distance). On screen (tangent units, one
+    // pixel = pixelAngle at the centre) an object of half-angle beta that still overlaps
+    // the frustum spans at most tan(corner + 2 beta) - tan(corner).
+    double nearest = std::numeric_limits<double>::infinity(), largestScale = 0.0;
+    for (std::uint32_t i = run.firstInstance; i < run.firstInstance + run.instanceCount; ++i) {
+        const DrawInstance& instance = selection_.instances[i];
+        const glm::vec3 axisX(instance.axisX), axisY(instance.axisY), axisZ(instance.axisZ);
+        const double scale = glm::length(axisX);
+        const glm::vec3 center = glm::vec3(instance.origin) + axisX * lod.sphereCenter.x +
+                                 axisY * lod.sphereCenter.y + axisZ * lod.sphereCenter.z;
+        nearest = std::min(nearest, double(glm::length(center)) - lod.sphereRadius * scale);
+        largestScale = std::max(largestScale, scale);
+    }
+    if (nearest <= near) {
+        return true;
+    }
+    const double beta = std::atan(radius * largestScale * 1.01 / nearest);
+    const double corner = std::atan(cornerTangent);
+    constexpr double kRightAngle = std::numbers::pi / 2;
+    if (corner + 2.0 * beta >= kRightAngle * 0.99) {
+        return true;
+    }
+    const double pixels = (std::tan(corner + 2.0 * beta) - cornerTangent) / pixelAngle + 2.0;
+    return pixels > double(maximumPointSize_);
 }
 
 void VegetationRenderer::drawMeshes(const std::vector<std::unique_ptr<VegetationMesh>>& meshes,
@@ -370,8 +448,8 @@ void VegetationRenderer::drawMeshes(const std::vector<std::unique_ptr<Vegetation
         meshProgram_.setFloat("uAmbientOcclusion", 1.0f);
         glBindTextureUnit(0, mesh->texture);
         glBindVertexArray(mesh->vertexArray);
-        glDrawElementsInstancedBaseInstance(GL_TRIANGLES, mesh->indexCount, GL_UNSIGNED_INT, nullptr,
-                                            GLsizei(run.instanceCount), run.firstInstance);
+        glDrawElementsInstancedBaseInstance(GL_TRIANGLES, mesh->indexCount, GL_UNSIGNED_INT,
+                                            nullptr, GLsizei(run.instanceCount), run.firstInstance);
         ++statistics_.drawCalls;
     }
 }

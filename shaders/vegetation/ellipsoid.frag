@@ -1,19 +1,22 @@
 #version 450 core
-// Ray-cast ellipsoid fragment (seed 001 §6.4.1): intersection in the unit-sphere frame,
-// relative to the centre; depth from the hit (reversed-Z: near / distance along -z),
-// declared depth_less because the hit is never nearer than the quad; the noise alpha
-// test of §3.4.1 with its cell count limited by the screen-space derivative (the mip
-// level fwidth allows); normal perturbed by the noise; screen-door LoD fades.
+// Ray-cast ellipsoid fragment (seed 001 §6.4.1): the pixel's view ray starts where it
+// crosses the plane in front of the ellipsoid (ellipsoid.vert), is intersected in the
+// unit-sphere frame relative to the centre; depth from the hit (reversed-Z: near /
+// distance along -z), declared depth_less because the hit is never nearer than the
+// sprite's depth (the ellipsoid's nearest point); the noise alpha test of §3.4.1 with
+// its cell count limited by the screen-space derivative (the mip level fwidth allows);
+// normal perturbed by the noise; screen-door LoD fades.
 #include "vegetation.glsl"
 
-layout(location = 0) in vec3 vLocalOrigin;
-layout(location = 1) in vec3 vLocalDirection;
-layout(location = 2) in vec3 vQuadView;
-layout(location = 3) flat in mat3 vLocalToViewNormal;
-layout(location = 6) flat in vec4 vColorAo;
-layout(location = 7) flat in vec4 vFadeNoise;
-layout(location = 8) flat in uvec2 vSeedDither;
+layout(location = 0) flat in mat3 vToLocal;
+layout(location = 3) flat in vec3 vLocalCenter;
+layout(location = 4) flat in vec4 vPlane;
+layout(location = 5) flat in vec4 vColorAo;
+layout(location = 6) flat in vec4 vFadeNoise;
+layout(location = 7) flat in uvec2 vSeedDither;
 
+uniform mat4 uProjection;
+uniform vec2 uViewport;  // pixels
 uniform float uNear;
 uniform float uNormalNoise;  // strength of the normal perturbation
 
@@ -22,18 +25,25 @@ layout(location = 1) out vec4 outNormal;  // xyz: view-space normal, w: material
 layout(depth_less) out float gl_FragDepth;
 
 void main() {
+    // The pixel's view ray (symmetric perspective) and its crossing with the plane.
+    vec2 ndc = gl_FragCoord.xy / uViewport * 2.0 - 1.0;
+    vec3 ray = vec3(ndc.x / uProjection[0][0], ndc.y / uProjection[1][1], -1.0);
+    float across = dot(ray, vPlane.xyz);
+    vec3 start = ray * (vPlane.w / max(across, 1e-6));  // view space, on the plane
+    vec3 localDirection = vToLocal * start;
+    vec3 localOrigin = localDirection - vLocalCenter;
     // Closest approach of the ray to the centre, then back along the ray to the surface.
-    float a = dot(vLocalDirection, vLocalDirection);
-    float along = -dot(vLocalOrigin, vLocalDirection) / a;
-    vec3 closest = vLocalOrigin + along * vLocalDirection;
+    float a = dot(localDirection, localDirection);
+    float along = -dot(localOrigin, localDirection) / a;
+    vec3 closest = localOrigin + along * localDirection;
     float discriminant = 1.0 - dot(closest, closest);
     float back = sqrt(max(discriminant, 0.0) / a);
-    vec3 q = closest - back * vLocalDirection;  // hit point on the unit sphere
-    float t = along - back;                      // ray: quad point × (1 + t)
+    vec3 q = closest - back * localDirection;  // hit point on the unit sphere
+    float t = along - back;                    // ray: start × (1 + t)
     // Derivatives before any discard (they need the whole pixel quad).
     vec3 width = fwidth(q);
     float footprint = max(max(width.x, width.y), width.z);
-    if (discriminant < 0.0 || t < -1.0) {
+    if (discriminant < 0.0 || t < -1.0 || across <= 0.0) {
         discard;
     }
     float dither = ditherValue(gl_FragCoord.xy, uintBitsToFloat(vSeedDither.y));
@@ -49,12 +59,10 @@ void main() {
     if (vFadeNoise.w > 0.0 && ellipsoidNoise(q, cells, vSeedDither.x) < vFadeNoise.w) {
         discard;
     }
-    vec3 hit = vQuadView * (1.0 + t);
+    vec3 hit = start * (1.0 + t);
     gl_FragDepth = uNear / max(-hit.z, uNear);
-    vec3 perturb = vec3(ellipsoidNoise(q, cells, vSeedDither.x ^ 0x68E31DA4u),
-                        ellipsoidNoise(q, cells, vSeedDither.x ^ 0xB5297A4Du),
-                        ellipsoidNoise(q, cells, vSeedDither.x ^ 0x1B56C4E9u)) - 0.5;
-    vec3 normal = normalize(vLocalToViewNormal * normalize(q + uNormalNoise * perturb));
+    vec3 perturb = ellipsoidNoise3(q, cells, vSeedDither.x ^ 0x68E31DA4u) - 0.5;
+    vec3 normal = normalize(transpose(vToLocal) * normalize(q + uNormalNoise * perturb));
     if (dot(normal, hit) > 0.0) {
         normal = -normal;
     }

@@ -38,9 +38,19 @@ uint ellipsoidNoiseSeed(vec3 center) {
            floatBitsToUint(center.z) * 0x85EBCA6Bu;
 }
 
+uvec3 ellipsoidNoiseHash(vec3 q, float cells, uint seed) {
+    ivec3 cell = ivec3(floor((q * 0.5 + 0.5) * cells));
+    return pcg3d(uvec3(cell + 4096) ^ uvec3(seed, seed * 0x27D4EB2Fu, seed * 0x165667B1u));
+}
+
 // Noise value in [0, 1) at unit-sphere point q with `cells` cells per diameter.
 float ellipsoidNoise(vec3 q, float cells, uint seed) {
-    ivec3 cell = ivec3(floor((q * 0.5 + 0.5) * cells));
-    uvec3 v = pcg3d(uvec3(cell + 4096) ^ uvec3(seed, seed * 0x27D4EB2Fu, seed * 0x165667B1u));
+    uvec3 v = ellipsoidNoiseHash(q, cells, seed);
     return float((v.x ^ v.y ^ v.z) >> 8u) / 16777216.0;
+}
+
+// Three independent noise values in [0, 1) of one cell (the normal perturbation; shader
+// only, so one hash serves all three components).
+vec3 ellipsoidNoise3(vec3 q, float cells, uint seed) {
+    return vec3(ellipsoidNoiseHash(q, cells, seed) >> 8u) / 16777216.0;
 }

@@ -27,7 +27,7 @@ namespace {
 constexpr double kDegree = std::numbers::pi / 180;
 
 class VegetationRendererTest : public ::testing::Test {
-protected:
+public:
     static void SetUpTestSuite() {
         Result<std::unique_ptr<GlContext>> created = GlContext::create({});
         ASSERT_TRUE(created) << created.error().message;
@@ -69,16 +69,18 @@ protected:
         std::vector<float> albedo;
     };
 
-    static Frame draw(VegetationRenderer& renderer, const InstanceBatch& batch, const Camera& c, int width,
-                      int height, double near, const VegetationSettings& settings) {
-        Result<Framebuffer> gbuffer = Framebuffer::create(width, height, {GL_RGBA16F, GL_RGBA16F}, true);
+    static Frame draw(VegetationRenderer& renderer, const InstanceBatch& batch, const Camera& c,
+                      int width, int height, double near, const VegetationSettings& settings) {
+        Result<Framebuffer> gbuffer =
+            Framebuffer::create(width, height, {GL_RGBA16F, GL_RGBA16F}, true);
         EXPECT_TRUE(gbuffer);
         glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
         gbuffer.value().bind();
         gbuffer.value().clearColor(0, glm::vec4(0.0f));
         gbuffer.value().clearColor(1, glm::vec4(0.0f));
         gbuffer.value().clearDepth(0.0f);
-        const glm::dmat4 projection = SceneRenderer::projection(c.verticalFov, double(width) / height, near);
+        const glm::dmat4 projection =
+            SceneRenderer::projection(c.verticalFov, double(width) / height, near);
         renderer.draw({&batch}, c, projection, near, width, height, settings);
         Frame frame;
         frame.depth = gbuffer.value().readDepth();
@@ -122,40 +124,58 @@ std::shared_ptr<PlantAsset> singleEllipsoid(glm::vec3 center, glm::vec3 radii, g
     return asset;
 }
 
+// Renders one ellipsoid `north` metres ahead at width × height and compares every
+// pixel's depth with the analytic intersection. 25 m ahead at 480 × 360 the ellipsoid is
+// a point sprite (~100 px; the renderer does not even issue the quad pass); 12 m ahead at
+// 960 × 720 it spans more pixels than llvmpipe's largest point (255) and the quad pass
+// draws it.
+void expectAnalyticEllipsoidDepth(int width, int height, double north, bool quadPass);
+
 TEST_F(VegetationRendererTest, RayCastEllipsoidDepthEqualsTheAnalyticIntersection) {
-    Result<std::unique_ptr<VegetationRenderer>> created = VegetationRenderer::create(ShaderLibrary());
+    expectAnalyticEllipsoidDepth(480, 360, 25.0, false);
+}
+
+TEST_F(VegetationRendererTest, LargeEllipsoidsAreDrawnByTheQuadPassWithTheSameDepth) {
+    expectAnalyticEllipsoidDepth(960, 720, 12.0, true);
+}
+
+void expectAnalyticEllipsoidDepth(int width, int height, double north, bool quadPass) {
+    Result<std::unique_ptr<VegetationRenderer>> created =
+        VegetationRenderer::create(ShaderLibrary());
     ASSERT_TRUE(created) << created.error().message;
     VegetationRenderer& renderer = *created.value();
     // An oblate, rotated ellipsoid (2 × 1.2 × 0.15 m) 1.5 m above the base.
-    const glm::mat3 axes = glm::mat3(glm::rotate(glm::mat4(1.0f), 0.6f, glm::normalize(glm::vec3(1, 2, 3))));
-    const std::uint32_t species =
-        renderer.addSpecies(singleEllipsoid(glm::vec3(0, 0, 1.5f), glm::vec3(2.0f, 1.2f, 0.15f), axes));
-    InstancePlacement p = placement(12.0, 0.0, 0.4f, 1.3f);
+    const glm::mat3 axes =
+        glm::mat3(glm::rotate(glm::mat4(1.0f), 0.6f, glm::normalize(glm::vec3(1, 2, 3))));
+    const std::uint32_t species = renderer.addSpecies(
+        singleEllipsoid(glm::vec3(0, 0, 1.5f), glm::vec3(2.0f, 1.2f, 0.15f), axes));
+    InstancePlacement p = VegetationRendererTest::placement(north, 0.0, 0.4f, 1.3f);
     p.species = species;
     const InstanceBatch batch = LodSelector::makeBatch(p.baseEcef, {p}, renderer.speciesLods());
 
-    const Camera c = camera();
-    const int width = 160, height = 120;
+    const Camera c = VegetationRendererTest::camera();
     const double near = 0.5;
     VegetationSettings settings;
     settings.closeUpMesh = false;
-    const Frame frame = draw(renderer, batch, c, width, height, near, settings);
+    const VegetationRendererTest::Frame frame =
+        VegetationRendererTest::draw(renderer, batch, c, width, height, near, settings);
 
     // The analytic ellipsoid in view space, double precision.
     const glm::dmat3 view = c.viewRotation();
     const InstanceBatch::Instance& instance = batch.instances[0];
     const glm::dmat3 instanceAxes(glm::dvec3(instance.axes[0]), glm::dvec3(instance.axes[1]),
                                   glm::dvec3(instance.axes[2]));
-    const glm::dvec3 center =
-        view * (batch.origin - c.position + glm::dvec3(instance.base) + instanceAxes * glm::dvec3(0, 0, 1.5));
-    const glm::dmat3 shape = view * instanceAxes * glm::dmat3(axes) * glm::dmat3(glm::diagonal3x3(glm::dvec3(2.0, 1.2, 0.15)));
+    const glm::dvec3 center = view * (batch.origin - c.position + glm::dvec3(instance.base) +
+                                      instanceAxes * glm::dvec3(0, 0, 1.5));
+    const glm::dmat3 shape = view * instanceAxes * glm::dmat3(axes) *
+                             glm::dmat3(glm::diagonal3x3(glm::dvec3(2.0, 1.2, 0.15)));
     const glm::dmat3 toLocal = glm::inverse(shape);
 
     int inside = 0, agree = 0, coverageMismatch = 0;
     double worst = 0.0;
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
-            const glm::dvec3 d = toLocal * pixelRay(c, x, y, width, height);
+            const glm::dvec3 d = toLocal * VegetationRendererTest::pixelRay(c, x, y, width, height);
             const glm::dvec3 o = toLocal * (-center);
             const double a = glm::dot(d, d), b = glm::dot(o, d), k = glm::dot(o, o) - 1.0;
             const double h = b * b - a * k;
@@ -186,6 +206,7 @@ TEST_F(VegetationRendererTest, RayCastEllipsoidDepthEqualsTheAnalyticIntersectio
     EXPECT_EQ(agree, inside) << "worst relative depth error " << worst;
     EXPECT_EQ(coverageMismatch, 0);
     EXPECT_EQ(renderer.statistics().visibleInstances, 1u);
+    EXPECT_EQ(renderer.statistics().quadPassRuns, quadPass ? 1u : 0u);
 }
 
 }  // namespace

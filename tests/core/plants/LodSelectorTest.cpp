@@ -70,7 +70,16 @@ TEST(LodSelector, BucketPrefixesHoldEveryPrimitiveTheirErrorsDraw) {
                 EXPECT_LT(i, lod.linePrefix[b]) << "bucket " << b;
             }
         }
+        // The bucket's largest ellipsoid bounds every ellipsoid an error in it may fade in
+        // (the renderer sizes its sprites by it).
+        const double high = LodSelector::bucketLowerError(b + 1) * std::exp(band / 2);
+        for (const LodEllipsoid& e : asset.lod.ellipsoids) {
+            if (e.errorMaximum > low && e.errorMinimum < high) {
+                EXPECT_GE(lod.ellipsoidRadius[b], e.radii.x) << "bucket " << b;
+            }
+        }
     }
+    EXPECT_FLOAT_EQ(lod.ellipsoidRadius[LodSelector::kBucketCount - 1], 0.2f * 16.0f);
     EXPECT_EQ(LodSelector::bucketOf(LodSelector::bucketLowerError(10) * 1.01), 10);
     EXPECT_EQ(LodSelector::bucketOf(0.0), 0);
     EXPECT_EQ(LodSelector::bucketOf(1e30), LodSelector::kBucketCount - 1);
@@ -92,7 +101,8 @@ protected:
     InstancePlacement at(double north, double east) const {
         InstancePlacement p;
         p.latitude = camera_.geodetic.latitude + north / 6367000.0;
-        p.longitude = camera_.geodetic.longitude + east / (6367000.0 * std::cos(camera_.geodetic.latitude));
+        p.longitude =
+            camera_.geodetic.longitude + east / (6367000.0 * std::cos(camera_.geodetic.latitude));
         p.baseEcef = Ellipsoid::toEcef({p.latitude, p.longitude, 0.0});
         return p;
     }
@@ -103,11 +113,11 @@ protected:
 
 TEST_F(LodSelectorScene, CullsBehindOutsideAndTooSmall) {
     const std::vector<InstancePlacement> placements = {
-        at(30, 0),        // visible
-        at(-30, 0),       // behind
-        at(30, 200),      // far outside the right frustum plane
-        at(200000, 0),    // 200 km: under a pixel
-        at(100, 40),      // visible
+        at(30, 0),      // visible
+        at(-30, 0),     // behind
+        at(30, 200),    // far outside the right frustum plane
+        at(200000, 0),  // 200 km: under a pixel
+        at(100, 40),    // visible
     };
     const InstanceBatch batch = LodSelector::makeBatch(camera_.position, placements, lods_);
     LodSelection out;
@@ -171,11 +181,44 @@ TEST_F(LodSelectorScene, RunsFollowTheErrorAndTheMeshHandover) {
     EXPECT_EQ(out.runs[0].kind, DrawRun::Kind::Mesh);
 }
 
+TEST_F(LodSelectorScene, RunBucketsMatchTheExactBucketAwayFromBoundaries) {
+    // 400 trees from 2 m to 20 km (log-spaced): the selection's fast logarithm puts each
+    // into the bucket of its error, except within 0.5 % of a bucket boundary.
+    std::vector<InstancePlacement> placements;
+    for (int i = 0; i < 400; ++i) {
+        placements.push_back(at(2.0 * std::pow(10000.0, i / 399.0), 0.0));
+    }
+    const InstanceBatch batch = LodSelector::makeBatch(camera_.position, placements, lods_);
+    settings_.closeUpMesh = false;
+    settings_.minimumPixels = 0.0;
+    LodSelection out;
+    LodSelector::select({&batch}, lods_, camera_, settings_, out);
+    EXPECT_GT(out.visibleInstances, 350u);
+    std::size_t checked = 0;
+    for (const DrawRun& run : out.runs) {
+        ASSERT_EQ(run.kind, DrawRun::Kind::Primitives);
+        for (std::uint32_t i = run.firstInstance; i < run.firstInstance + run.instanceCount; ++i) {
+            const double error = out.instances[i].axisX.w;
+            const double position =
+                std::log(error / LodSelector::kSmallestError) / std::log(LodSelector::kBucketRatio);
+            const double fromBoundary = std::abs(position - std::round(position));
+            if (fromBoundary > 0.005 && error > LodSelector::kSmallestError) {
+                EXPECT_EQ(int(run.bucket), LodSelector::bucketOf(error)) << "error " << error;
+                ++checked;
+            } else {
+                EXPECT_LE(std::abs(int(run.bucket) - LodSelector::bucketOf(error)), 1);
+            }
+        }
+    }
+    EXPECT_GT(checked, 300u);
+}
+
 TEST_F(LodSelectorScene, DrawnTransformPlacesTheModelInViewSpace) {
     InstancePlacement p = at(50, 10);
     p.scale = 2.0f;
     p.heading = float(90 * kDegree);
-    const InstanceBatch batch = LodSelector::makeBatch(p.baseEcef + glm::dvec3(1000, -500, 30), {p}, lods_);
+    const InstanceBatch batch =
+        LodSelector::makeBatch(p.baseEcef + glm::dvec3(1000, -500, 30), {p}, lods_);
     settings_.closeUpMesh = false;
     LodSelection out;
     LodSelector::select({&batch}, lods_, camera_, settings_, out);
@@ -186,7 +229,8 @@ TEST_F(LodSelectorScene, DrawnTransformPlacesTheModelInViewSpace) {
     const glm::dvec3 up = Ellipsoid::surfaceNormal(p.latitude, p.longitude);
     const glm::dvec3 expectedEcef = p.baseEcef + east * 2.0 + up * 4.0;
     const glm::dvec3 expectedView = camera_.viewRotation() * (expectedEcef - camera_.position);
-    const glm::vec3 drawn = glm::vec3(d.axisY) * 1.0f + glm::vec3(d.axisZ) * 2.0f + glm::vec3(d.origin);
+    const glm::vec3 drawn =
+        glm::vec3(d.axisY) * 1.0f + glm::vec3(d.axisZ) * 2.0f + glm::vec3(d.origin);
     EXPECT_NEAR(drawn.x, expectedView.x, 2e-3);
     EXPECT_NEAR(drawn.y, expectedView.y, 2e-3);
     EXPECT_NEAR(drawn.z, expectedView.z, 2e-3);

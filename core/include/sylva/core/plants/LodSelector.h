@@ -40,15 +40,19 @@ namespace sylva {
 struct InstanceBatch {
     glm::dvec3 origin{0.0};  // ECEF, metres
     struct Instance {
-        glm::vec3 base{0.0f};   // stem base relative to origin, ECEF metres
-        glm::vec3 axes[3];      // model x, y, z in ECEF (rotation and scale applied)
-        glm::vec3 center{0.0f}; // bounding-sphere centre relative to origin, ECEF metres
-        float radius = 0.0f;    // bounding-sphere radius, metres
-        glm::vec3 tint{1.0f};   // linear RGB factor
+        glm::vec3 base{0.0f};    // stem base relative to origin, ECEF metres
+        glm::vec3 axes[3];       // model x, y, z in ECEF (rotation and scale applied)
+        glm::vec3 center{0.0f};  // bounding-sphere centre relative to origin, ECEF metres
+        float radius = 0.0f;     // bounding-sphere radius, metres
+        glm::vec3 tint{1.0f};    // linear RGB factor
         std::uint32_t species = 0;
         std::uint32_t hash = 0;  // decorrelates the dither patterns of neighbours
     };
     std::vector<Instance> instances;
+    // Per instance (same order): bounding-sphere centre relative to origin (xyz, ECEF
+    // metres) and radius (w) — all the culling pass reads, packed so that it streams
+    // 16 bytes per instance instead of the whole Instance.
+    std::vector<glm::vec4> spheres;
     // Bounding sphere of all instances' spheres, relative to origin (per-tile culling).
     glm::vec3 boundsCenter{0.0f};
     float boundsRadius = 0.0f;
@@ -76,6 +80,9 @@ struct SpeciesLod {
     // Per bucket: primitives of the prefix (arrays sorted by errorMaximum descending).
     std::vector<std::uint32_t> ellipsoidPrefix;
     std::vector<std::uint32_t> linePrefix;
+    // Per bucket: the largest radius (metres, model frame) of an ellipsoid an instance of
+    // the bucket may draw — what the renderer needs to bound the sprite sizes of a run.
+    std::vector<float> ellipsoidRadius;
     // Billboard-cloud levels: level i is drawn in [billboardError[i], billboardError[i+1]).
     std::vector<float> billboardError;
 };

@@ -23,11 +23,14 @@ struct VegetationBenchmarkOptions {
     int width = 1280;
     int height = 720;
     int trees = 10000;
-    int leaves = 1000;           // of the generated oak
-    int framesPerSegment = 4;    // four segments
-    int referenceScale = 4;      // supersampling of the mesh reference
-    bool scaling = true;         // also 100k and 1M instances
-    std::string framesFolder;    // if set, sampled frames of each method are written there
+    int leaves = 1000;         // of the generated oak
+    int framesPerSegment = 4;  // four segments
+    int referenceScale = 4;    // supersampling of the mesh reference
+    bool scaling = true;       // also 100k and 1M instances
+    std::string framesFolder;  // if set, every frame of each method is written there
+    // The methods to run (profiling); without the mesh there is no reference image and
+    // no RMSE, without the LoD no scaling runs.
+    bool lod = true, billboards = true, mesh = true;
 };
 
 struct VegetationBenchmarkResult {

@@ -47,6 +47,7 @@ struct VegetationStatistics {
     std::size_t drawCalls = 0;
     std::size_t ellipsoids = 0;  // primitives issued (prefixes × instances)
     std::size_t lines = 0;
+    std::size_t quadPassRuns = 0;  // runs whose large ellipsoids needed the quad pass
     std::size_t meshInstances = 0;
     std::size_t billboardInstances = 0;
     double selectSeconds = 0;  // CPU: LodSelector::select
@@ -79,6 +80,10 @@ public:
 private:
     VegetationRenderer() = default;
     struct Species;
+    // Whether an ellipsoid of the run may need a sprite larger than the driver's largest
+    // point (then the run is drawn a second time, as quads, for those ellipsoids).
+    bool mayExceedPointSize(const DrawRun& run, double pixelAngle, double cornerTangent,
+                            double near) const;
     void drawMeshes(const std::vector<std::unique_ptr<VegetationMesh>>& meshes, const DrawRun& run,
                     glm::vec2 interval);
 
@@ -92,6 +97,7 @@ private:
     std::uint32_t instanceBuffer_ = 0;
     std::size_t instanceCapacity_ = 0;
     std::uint32_t primitiveArray_ = 0;  // VAO: instance attributes only
+    float maximumPointSize_ = 1.0f;     // pixels: the driver's largest point sprite
     LodSelection selection_;
     VegetationStatistics statistics_;
 };
