@@ -69,6 +69,12 @@ expect_stderr "sylva: --cache-mb expects a tile cache budget in MiB within 16..1
 expect_no_png "$SCRATCH/cache"
 end
 
+begin "bench vegetation --methods with an unknown method -> exit 2"
+run bench vegetation --methods lod,trees
+expect_rc 2
+expect_stderr "sylva: --methods expects a comma-separated list of lod, bbc and mesh (got 'trees')"
+end
+
 begin "bench tiles without sample data -> exit 1 naming the file and scripts/fetch-samples"
 run bench tiles --data "$SCRATCH/no-data"
 expect_rc 1
