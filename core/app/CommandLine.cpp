@@ -2,11 +2,13 @@
 
 namespace sylva::app {
 
-ParsedCommandLine parseCommandLine(const std::vector<std::string>& arguments, const std::vector<OptionSpec>& specs) {
+ParsedCommandLine parseCommandLine(const std::vector<std::string>& arguments,
+                                   const std::vector<OptionSpec>& specs) {
     ParsedCommandLine result;
     for (std::size_t i = 0; i < arguments.size(); ++i) {
         const std::string& argument = arguments[i];
-        if (argument == "-D" || (argument.rfind("-D", 0) == 0 && argument.size() > 2 && argument[2] != '-')) {
+        if (argument == "-D" ||
+            (argument.rfind("-D", 0) == 0 && argument.size() > 2 && argument[2] != '-')) {
             std::string definition = argument.size() > 2 ? argument.substr(2) : "";
             if (definition.empty()) {
                 if (i + 1 >= arguments.size()) {
@@ -20,7 +22,8 @@ ParsedCommandLine parseCommandLine(const std::vector<std::string>& arguments, co
                 result.error = "-D needs name=value, got '" + definition + "'";
                 return result;
             }
-            result.defines.emplace_back(definition.substr(0, equals), definition.substr(equals + 1));
+            result.defines.emplace_back(definition.substr(0, equals),
+                                        definition.substr(equals + 1));
             continue;
         }
         if (argument.rfind("--", 0) != 0 || argument == "--") {
@@ -60,7 +63,8 @@ ParsedCommandLine parseCommandLine(const std::vector<std::string>& arguments, co
 }
 
 std::optional<std::size_t> parseCacheMegabytes(const std::string& text) {
-    if (text.empty() || text.size() > 7 || text.find_first_not_of("0123456789") != std::string::npos) {
+    if (text.empty() || text.size() > 7 ||
+        text.find_first_not_of("0123456789") != std::string::npos) {
         return std::nullopt;
     }
     const std::size_t value = std::stoul(text);
@@ -80,6 +84,18 @@ bool parseSize(const std::string& text, int& width, int& height) {
     width = w;
     height = h;
     return true;
+}
+
+Result<std::optional<render::GlBackend>> glBackendOption(const ParsedCommandLine& command) {
+    const std::optional<std::string> value = command.get("gl");
+    if (!value) {
+        return std::optional<render::GlBackend>();
+    }
+    Result<render::GlBackend> backend = render::parseBackend(*value);
+    if (!backend) {
+        return Error{"--gl: " + backend.error().message};
+    }
+    return std::optional<render::GlBackend>(backend.value());
 }
 
 }  // namespace sylva::app

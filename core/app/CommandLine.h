@@ -10,10 +10,13 @@
 #include <utility>
 #include <vector>
 
+#include "sylva/core/base/Result.h"
+#include "sylva/render/GlContext.h"
+
 namespace sylva::app {
 
 struct OptionSpec {
-    std::string name;   // without dashes: "out"
+    std::string name;  // without dashes: "out"
     bool takesValue = true;
 };
 
@@ -36,6 +39,11 @@ std::optional<std::size_t> parseCacheMegabytes(const std::string& text);
 // "WIDTHxHEIGHT" within 1..16384 each (--size); false for anything else.
 bool parseSize(const std::string& text, int& width, int& height);
 
-ParsedCommandLine parseCommandLine(const std::vector<std::string>& arguments, const std::vector<OptionSpec>& specs);
+// The `--gl B` option of the commands that render: the backend, nullopt when absent, or
+// an error "--gl: ..." when B names no backend (a usage error, exit code 2).
+Result<std::optional<render::GlBackend>> glBackendOption(const ParsedCommandLine& command);
+
+ParsedCommandLine parseCommandLine(const std::vector<std::string>& arguments,
+                                   const std::vector<OptionSpec>& specs);
 
 }  // namespace sylva::app

@@ -307,15 +307,12 @@ int runRender(const std::vector<std::string>& arguments) {
         reportError("--size expects WIDTHxHEIGHT within 1..16384, got '" + *size + "'");
         return 2;
     }
-    std::optional<render::GlBackend> backend;
-    if (std::optional<std::string> gl = command.get("gl")) {
-        Result<render::GlBackend> parsed = render::parseBackend(*gl);
-        if (!parsed) {
-            reportError("--gl: " + parsed.error().message);
-            return 2;
-        }
-        backend = parsed.value();
+    Result<std::optional<render::GlBackend>> glOption = glBackendOption(command);
+    if (!glOption) {
+        reportError(glOption.error().message);
+        return 2;
     }
+    const std::optional<render::GlBackend> backend = glOption.value();
     std::optional<std::size_t> cacheOverride;
     if (std::optional<std::string> cache = command.get("cache-mb")) {
         cacheOverride = parseCacheMegabytes(*cache);

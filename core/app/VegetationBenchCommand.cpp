@@ -78,14 +78,12 @@ int runVegetationBench(const std::vector<std::string>& arguments) {
     }
     options.framesFolder = command.get("write-frames").value_or("");
     render::ContextOptions contextOptions;
-    if (std::optional<std::string> gl = command.get("gl")) {
-        Result<render::GlBackend> backend = render::parseBackend(*gl);
-        if (!backend) {
-            reportError("--gl: " + backend.error().message);
-            return 2;
-        }
-        contextOptions.backend = backend.value();
+    Result<std::optional<render::GlBackend>> backend = glBackendOption(command);
+    if (!backend) {
+        reportError(backend.error().message);
+        return 2;
     }
+    contextOptions.backend = backend.value();
     Result<std::unique_ptr<render::GlContext>> context = render::GlContext::create(contextOptions);
     if (!context) {
         reportError(context.error().message);

@@ -117,14 +117,12 @@ int runWatch(const std::vector<std::string>& arguments) {
         }
     }
     render::ContextOptions contextOptions;
-    if (std::optional<std::string> gl = command.get("gl")) {
-        Result<render::GlBackend> parsed = render::parseBackend(*gl);
-        if (!parsed) {
-            reportError("--gl: " + parsed.error().message);
-            return 2;
-        }
-        contextOptions.backend = parsed.value();
+    Result<std::optional<render::GlBackend>> backend = glBackendOption(command);
+    if (!backend) {
+        reportError(backend.error().message);
+        return 2;
     }
+    contextOptions.backend = backend.value();
     const std::filesystem::path projectFile = command.positional[0];
     const std::filesystem::path outputFolder = command.get("out").value_or("out");
     const std::string viewsName = command.get("views").value_or("");

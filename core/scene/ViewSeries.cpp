@@ -471,9 +471,19 @@ Result<std::pair<int, int>> ViewSeries::parseShard(const std::string& text) {
 
 std::vector<RenderJob> ViewSeries::shard(const std::vector<RenderJob>& jobs, int index, int count) {
     SYLVA_CHECK(count >= 1 && index >= 1 && index <= count);
+    // Contiguous blocks of groups: groups are numbered in order of first appearance, and
+    // neighbouring groups are the same camera at other times or the next frames of a
+    // path, which need the same tiles. Dealing them round-robin made every shard of the
+    // Olinda series produce every camera's tiles.
+    std::size_t groups = 0;
+    for (const RenderJob& job : jobs) {
+        groups = std::max(groups, job.group + 1);
+    }
+    const std::size_t shards = static_cast<std::size_t>(count);
     std::vector<RenderJob> mine;
     for (const RenderJob& job : jobs) {
-        if (static_cast<int>(job.group % static_cast<std::size_t>(count)) == index - 1) {
+        if (job.group * shards / std::max<std::size_t>(groups, 1) ==
+            static_cast<std::size_t>(index - 1)) {
             mine.push_back(job);
         }
     }

@@ -121,6 +121,27 @@ TEST(ViewSeriesTest, ShardsPartitionTheJobsAndKeepComparisonsWithTheirImages) {
     EXPECT_FALSE(ViewSeries::parseShard("1/2x").ok());
 }
 
+TEST(ViewSeriesTest, ShardsKeepTheTimesOfOneCameraTogether) {
+    // photos: 3 cameras × 2 times = 6 groups; over 3 shards each shard renders one camera
+    // (its tiles are produced once), and over 2 shards only one camera is split.
+    const ProjectModel model = load(kProject);
+    auto jobs = ViewSeries::expand(model, "out", "photos");
+    ASSERT_TRUE(jobs.ok()) << jobs.error().message;
+    const auto camerasOf = [&](int index, int count) {
+        std::set<std::string> cameras;
+        for (const RenderJob& job : ViewSeries::shard(jobs.value(), index, count)) {
+            cameras.insert(job.camera);
+        }
+        return cameras;
+    };
+    for (int index = 1; index <= 3; ++index) {
+        EXPECT_EQ(camerasOf(index, 3).size(), 1u) << "shard " << index << " of 3";
+    }
+    EXPECT_EQ(camerasOf(1, 2).size() + camerasOf(2, 2).size(), 4u);
+    EXPECT_EQ(ViewSeries::shard(jobs.value(), 1, 2).size(),
+              ViewSeries::shard(jobs.value(), 2, 2).size());
+}
+
 TEST(ViewSeriesTest, LocatedErrorsBeforeRendering) {
     auto errorOf = [](const std::string& text) {
         const ProjectModel model = load(text);

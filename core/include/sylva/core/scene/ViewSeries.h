@@ -76,9 +76,11 @@ public:
     // "i/N" (1 ≤ i ≤ N): shard i of N.
     static Result<std::pair<int, int>> parseShard(const std::string& text);
     // The jobs of shard `index` (1-based) of `count`: a deterministic partition where
-    // every job is in exactly one shard. Jobs are dealt round-robin by group — all
-    // scenarios and comparisons of one view, camera/frame and time — so a comparison
-    // always lives with the two images it is made of.
+    // every job is in exactly one shard. Jobs move by group — all scenarios and
+    // comparisons of one view, camera/frame and time, so a comparison always lives with
+    // the two images it is made of — and shard i takes the i-th contiguous block of
+    // groups (in order of first appearance), so the times of one camera and consecutive
+    // path frames, which share their tiles, mostly stay in one shard.
     static std::vector<RenderJob> shard(const std::vector<RenderJob>& jobs, int index, int count);
     // The group key used by shard(): equal for jobs that must stay together.
     static std::string groupOf(const RenderJob& job);
