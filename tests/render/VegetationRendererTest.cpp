@@ -1,7 +1,7 @@
-// The vegetation renderer's ray casting against analytic intersections (issue 7):
-// a ray-cast ellipsoid's and a line's depth per pixel equal the ray/quadric and
-// ray/capsule intersections computed here in double precision; the fades are
-// complementary; plants behind terrain do not draw.
+// The vegetation renderer's ray casting against analytic intersections (issue 7): a
+// ray-cast ellipsoid's depth per pixel equals the ray/quadric intersection computed here
+// in double precision, on both paths (point sprite and quad pass), and an ellipsoid
+// never draws where terrain in front of it (a wall in the depth buffer) hides it.
 #include <gtest/gtest.h>
 
 #include <glad/gl.h>
@@ -69,8 +69,11 @@ public:
         std::vector<float> albedo;
     };
 
+    // Draws into a fresh G-buffer whose depth is cleared to `clearDepth` (reversed-Z:
+    // 0 is infinitely far; near / d is a wall of terrain d metres ahead).
     static Frame draw(VegetationRenderer& renderer, const InstanceBatch& batch, const Camera& c,
-                      int width, int height, double near, const VegetationSettings& settings) {
+                      int width, int height, double near, const VegetationSettings& settings,
+                      float clearDepth = 0.0f) {
         Result<Framebuffer> gbuffer =
             Framebuffer::create(width, height, {GL_RGBA16F, GL_RGBA16F}, true);
         EXPECT_TRUE(gbuffer);
@@ -78,7 +81,7 @@ public:
         gbuffer.value().bind();
         gbuffer.value().clearColor(0, glm::vec4(0.0f));
         gbuffer.value().clearColor(1, glm::vec4(0.0f));
-        gbuffer.value().clearDepth(0.0f);
+        gbuffer.value().clearDepth(clearDepth);
         const glm::dmat4 projection =
             SceneRenderer::projection(c.verticalFov, double(width) / height, near);
         renderer.draw({&batch}, c, projection, near, width, height, settings);
@@ -128,8 +131,12 @@ std::shared_ptr<PlantAsset> singleEllipsoid(glm::vec3 center, glm::vec3 radii, g
 // pixel's depth with the analytic intersection. 25 m ahead at 480 × 360 the ellipsoid is
 // a point sprite (~100 px; the renderer does not even issue the quad pass); 12 m ahead at
 // 960 × 720 it spans more pixels than llvmpipe's largest point (255) and the quad pass
-// draws it.
-void expectAnalyticEllipsoidDepth(int width, int height, double north, bool quadPass);
+// draws it. With `wall`, the depth buffer first holds a wall across the view at the
+// depth of the ellipsoid's centre (terrain in front of half of it): every pixel whose
+// analytic hit is behind the wall keeps the wall and no colour, every pixel in front
+// is drawn with its depth.
+void expectAnalyticEllipsoidDepth(int width, int height, double north, bool quadPass,
+                                  bool wall = false);
 
 TEST_F(VegetationRendererTest, RayCastEllipsoidDepthEqualsTheAnalyticIntersection) {
     expectAnalyticEllipsoidDepth(480, 360, 25.0, false);
@@ -139,7 +146,12 @@ TEST_F(VegetationRendererTest, LargeEllipsoidsAreDrawnByTheQuadPassWithTheSameDe
     expectAnalyticEllipsoidDepth(960, 720, 12.0, true);
 }
 
-void expectAnalyticEllipsoidDepth(int width, int height, double north, bool quadPass) {
+TEST_F(VegetationRendererTest, EllipsoidsNeverDrawInFrontOfTerrainThatHidesThem) {
+    expectAnalyticEllipsoidDepth(480, 360, 25.0, false, true);  // point sprite
+    expectAnalyticEllipsoidDepth(960, 720, 12.0, true, true);   // quad pass
+}
+
+void expectAnalyticEllipsoidDepth(int width, int height, double north, bool quadPass, bool wall) {
     Result<std::unique_ptr<VegetationRenderer>> created =
         VegetationRenderer::create(ShaderLibrary());
     ASSERT_TRUE(created) << created.error().message;
@@ -157,8 +169,6 @@ void expectAnalyticEllipsoidDepth(int width, int height, double north, bool quad
     const double near = 0.5;
     VegetationSettings settings;
     settings.closeUpMesh = false;
-    const VegetationRendererTest::Frame frame =
-        VegetationRendererTest::draw(renderer, batch, c, width, height, near, settings);
 
     // The analytic ellipsoid in view space, double precision.
     const glm::dmat3 view = c.viewRotation();
@@ -170,8 +180,12 @@ void expectAnalyticEllipsoidDepth(int width, int height, double north, bool quad
     const glm::dmat3 shape = view * instanceAxes * glm::dmat3(axes) *
                              glm::dmat3(glm::diagonal3x3(glm::dvec3(2.0, 1.2, 0.15)));
     const glm::dmat3 toLocal = glm::inverse(shape);
+    const double wallDistance = wall ? -center.z : 0.0;
+    const float wallDepth = wall ? float(near / wallDistance) : 0.0f;
+    const VegetationRendererTest::Frame frame =
+        VegetationRendererTest::draw(renderer, batch, c, width, height, near, settings, wallDepth);
 
-    int inside = 0, agree = 0, coverageMismatch = 0;
+    int inside = 0, agree = 0, coverageMismatch = 0, hidden = 0, hiddenKept = 0;
     double worst = 0.0;
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
@@ -180,11 +194,13 @@ void expectAnalyticEllipsoidDepth(int width, int height, double north, bool quad
             const double a = glm::dot(d, d), b = glm::dot(o, d), k = glm::dot(o, o) - 1.0;
             const double h = b * b - a * k;
             const float depth = frame.depth[std::size_t(y) * width + x];
+            // Ambient occlusion 0.75 in albedo.a marks a drawn ellipsoid pixel.
+            const bool drawn = frame.albedo[(std::size_t(y) * width + x) * 4 + 3] > 0.0f;
             // Squared distance of the ray from the centre in the unit-sphere frame: < 1 hits.
             // Pixels within 3 % of the silhouette are left out (coverage may differ there).
             const double miss = glm::dot(o, o) - b * b / a;
             if (miss > 1.03) {
-                coverageMismatch += depth > 0.0f ? 1 : 0;
+                coverageMismatch += drawn || depth != wallDepth ? 1 : 0;
                 continue;
             }
             if (miss > 0.97) {
@@ -192,8 +208,16 @@ void expectAnalyticEllipsoidDepth(int width, int height, double north, bool quad
             }
             const double t = (-b - std::sqrt(h)) / a;
             const double z = t;  // the ray's z component is -1
+            if (wall && z > wallDistance * (1.0 - 1e-3)) {
+                // Behind the wall (or too close to it to tell): must keep the wall.
+                if (z > wallDistance * (1.0 + 1e-3)) {
+                    ++hidden;
+                    hiddenKept += !drawn && depth == wallDepth ? 1 : 0;
+                }
+                continue;
+            }
             ++inside;
-            if (depth <= 0.0f) {
+            if (depth <= 0.0f || !drawn) {
                 continue;
             }
             const double rendered = near / depth;
@@ -202,8 +226,12 @@ void expectAnalyticEllipsoidDepth(int width, int height, double north, bool quad
             agree += error < 2e-4 ? 1 : 0;
         }
     }
-    EXPECT_GT(inside, 500);
+    EXPECT_GT(inside, wall ? 200 : 500);
     EXPECT_EQ(agree, inside) << "worst relative depth error " << worst;
+    if (wall) {
+        EXPECT_GT(hidden, 200);
+        EXPECT_EQ(hiddenKept, hidden);
+    }
     EXPECT_EQ(coverageMismatch, 0);
     EXPECT_EQ(renderer.statistics().visibleInstances, 1u);
     EXPECT_EQ(renderer.statistics().quadPassRuns, quadPass ? 1u : 0u);
