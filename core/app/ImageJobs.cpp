@@ -42,13 +42,15 @@ Result<RenderSetup> makeRenderSetup(const ProjectModel& model, int overrideWidth
     setup.cacheMegabytes =
         static_cast<std::size_t>(renderBlock.optionalNumber("cache_mb").value_or(1024));
     const Value* vegetationValue = renderBlock.value("vegetation");
-    const std::string vegetation =
-        vegetationValue && vegetationValue->get<Word>() ? vegetationValue->get<Word>()->text : "lod";
+    const std::string vegetation = vegetationValue && vegetationValue->get<Word>()
+                                       ? vegetationValue->get<Word>()->text
+                                       : "lod";
     settings.vegetation.method = vegetation == "mesh"         ? VegetationMethod::Mesh
                                  : vegetation == "billboards" ? VegetationMethod::Billboard
                                                               : VegetationMethod::Lod;
     settings.vegetation.quality = renderBlock.optionalNumber("vegetation_quality").value_or(1.0);
-    settings.vegetation.maximumDistance = renderBlock.optionalNumber("vegetation_distance").value_or(6000.0);
+    settings.vegetation.maximumDistance =
+        renderBlock.optionalNumber("vegetation_distance").value_or(6000.0);
     return setup;
 }
 
@@ -95,6 +97,18 @@ Result<JobView> viewForJob(const ProjectModel& model, const RenderJob& job,
         view.sun = Ellipsoid::surfaceNormal(position.subsolarLatitude, position.subsolarLongitude);
     }
     return view;
+}
+
+Status writeRenderedImage(const std::filesystem::path& path, render::Image& image,
+                          const ImageMetadata& metadata) {
+    if (ImageWriter::isExr(path)) {
+        LinearImage radiance;
+        radiance.width = image.width;
+        radiance.height = image.height;
+        radiance.pixels = std::move(image.radiance);
+        return ImageWriter::writeLinear(path, radiance, metadata);
+    }
+    return ImageWriter::writeRgba8(path, image.width, image.height, image.pixels, metadata);
 }
 
 }  // namespace sylva::app

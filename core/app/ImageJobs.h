@@ -9,6 +9,7 @@
 #include <string>
 
 #include "sylva/core/base/Result.h"
+#include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/scene/Camera.h"
 #include "sylva/core/scene/CameraPath.h"
 #include "sylva/core/scene/ProjectModel.h"
@@ -41,5 +42,11 @@ Result<JobView> viewForJob(const ProjectModel& model, const RenderJob& job,
                            const TerrainLayers& layers, TileProvider& tiles,
                            const RenderSetup& setup,
                            const std::map<std::string, CameraPath>& paths);
+
+// Writes a rendered image to `path`: EXR paths get the linear radiance (half float; the
+// image must have been rendered with RenderSettings::linearOutput, which this moves
+// out), other paths the displayed 8-bit sRGB pixels. Errors name the path.
+Status writeRenderedImage(const std::filesystem::path& path, render::Image& image,
+                          const ImageMetadata& metadata = {});
 
 }  // namespace sylva::app

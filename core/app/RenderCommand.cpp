@@ -706,45 +706,42 @@ int runRender(const std::vector<std::string>& arguments) {
             const std::string& secondName = allJobs[job.second].scenario;
             const std::filesystem::path& firstFile = allJobs[job.first].output;
             const std::filesystem::path& secondFile = allJobs[job.second].output;
+            // Reads both scenario images (radiance for EXR, displayed pixels otherwise),
+            // composes them and writes the result; false after reporting a failure.
             Status written;
             int width = 0, height = 0;
-            if (ImageWriter::isExr(job.output)) {
-                Result<LinearImage> a = readRadiance(firstFile);
-                Result<LinearImage> b = readRadiance(secondFile);
+            const auto composeFiles = [&](const auto& read, const auto& write) {
+                const auto a = read(firstFile);
+                const auto b = read(secondFile);
                 if (!a || !b) {
                     fail(job, job.output.string() + ": cannot read the images to compare: " +
                                   (!a ? a.error().message : b.error().message));
-                    continue;
+                    return false;
                 }
-                Result<LinearImage> made =
-                    compose(job, reader, a.value(), b.value(), firstName, secondName);
+                const auto made = compose(job, reader, a.value(), b.value(), firstName, secondName);
                 if (!made) {
                     fail(job, block->location.toString() + ": " + block->keyword + " '" +
                                   block->name + "': " + made.error().message);
-                    continue;
+                    return false;
                 }
                 width = made.value().width;
                 height = made.value().height;
-                written = ImageWriter::writeLinear(job.output, made.value(), metadataFor(job));
-            } else {
-                Result<RgbaImage> a = readDisplayed(firstFile);
-                Result<RgbaImage> b = readDisplayed(secondFile);
-                if (!a || !b) {
-                    fail(job, job.output.string() + ": cannot read the images to compare: " +
-                                  (!a ? a.error().message : b.error().message));
-                    continue;
-                }
-                Result<RgbaImage> made =
-                    compose(job, reader, a.value(), b.value(), firstName, secondName);
-                if (!made) {
-                    fail(job, block->location.toString() + ": " + block->keyword + " '" +
-                                  block->name + "': " + made.error().message);
-                    continue;
-                }
-                width = made.value().width;
-                height = made.value().height;
-                written = ImageWriter::writeRgba8(job.output, width, height, made.value().pixels,
-                                                  metadataFor(job));
+                written = write(made.value());
+                return true;
+            };
+            const bool composed =
+                ImageWriter::isExr(job.output)
+                    ? composeFiles(readRadiance,
+                                   [&](const LinearImage& image) {
+                                       return ImageWriter::writeLinear(job.output, image,
+                                                                       metadataFor(job));
+                                   })
+                    : composeFiles(readDisplayed, [&](const RgbaImage& image) {
+                          return ImageWriter::writeRgba8(job.output, image.width, image.height,
+                                                         image.pixels, metadataFor(job));
+                      });
+            if (!composed) {
+                continue;
             }
             if (!written) {
                 fail(job, written.error().message);
@@ -783,17 +780,7 @@ int runRender(const std::vector<std::string>& arguments) {
             fail(job, what + ": " + image.error().message);
             continue;
         }
-        Status written;
-        if (settings.linearOutput) {
-            LinearImage radiance;
-            radiance.width = image->width;
-            radiance.height = image->height;
-            radiance.pixels = std::move(image->radiance);
-            written = ImageWriter::writeLinear(job.output, radiance, metadataFor(job));
-        } else {
-            written = ImageWriter::writeRgba8(job.output, image->width, image->height,
-                                              image->pixels, metadataFor(job));
-        }
+        const Status written = writeRenderedImage(job.output, image.value(), metadataFor(job));
         if (!written) {
             fail(job, written.error().message);
             continue;

@@ -237,17 +237,7 @@ int runWatch(const std::vector<std::string>& arguments) {
                 ok = false;
                 continue;
             }
-            Status written;
-            if (settings.linearOutput) {
-                LinearImage radiance;
-                radiance.width = image->width;
-                radiance.height = image->height;
-                radiance.pixels = std::move(image->radiance);
-                written = ImageWriter::writeLinear(job.output, radiance);
-            } else {
-                written =
-                    ImageWriter::writeRgba8(job.output, image->width, image->height, image->pixels);
-            }
+            const Status written = writeRenderedImage(job.output, image.value());
             if (!written) {
                 reportError(written.error().message);
                 ok = false;
