@@ -502,8 +502,9 @@ void addVectorSourceKinds(SchemaRegistry& registry) {
              "Every cell's randomness comes from (seed, cell), so instances are identical whatever the "
              "tile, worker count or request order, and each instance belongs to exactly one tile. "
              "Heights come from `elevation`. Species mix by share for scattering; for points from "
-             "`species_attribute` (through `species_map`). Drawn as crown markers by rasterize until "
-             "the vegetation renderer exists.",
+             "`species_attribute` (through `species_map`). Drawn as trees when a scenario lists the "
+             "source in its `layers` (each species with the `models` entry of its name), and as "
+             "crown markers by rasterize.",
              {port("elevation", PortType::Elevation, true,
                    "Terrain the instances stand on (any source giving elevation)."),
               port("density", PortType::Mask, false, "Density in [0, 1] (times per_hectare)."),
