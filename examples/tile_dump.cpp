@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "sylva/core/sources/HypsometricSource.h"
-#include "sylva/core/sources/NoiseSource.h"
-#include "sylva/core/tiles/TileEvaluator.h"
+#include "sylva/core/sources/raster/HypsometricSource.h"
+#include "sylva/core/sources/raster/NoiseSource.h"
+#include "sylva/core/scheduler/TileEvaluator.h"
 
 int main(int argc, char** argv) {
     sylva::TileKey key{argc > 1 ? std::atoi(argv[1]) : 3, 0, argc > 2 ? std::atoi(argv[2]) : 9,

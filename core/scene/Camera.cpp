@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "sylva/core/scene/BlockReader.h"
-#include "sylva/core/schema/Schema.h"
+#include "sylva/core/model/BlockReader.h"
+#include "sylva/core/model/Schema.h"
 
 namespace sylva {
 namespace {

@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "sylva/core/geo/Ellipsoid.h"
-#include "sylva/core/scene/BlockReader.h"
+#include "sylva/core/model/BlockReader.h"
 
 namespace sylva {
 namespace {

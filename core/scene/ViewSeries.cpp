@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <map>
 
-#include "sylva/core/scene/BlockReader.h"
+#include "sylva/core/model/BlockReader.h"
 #include "sylva/core/scene/CameraPath.h"
 
 namespace sylva {

@@ -23,13 +23,4 @@ void Source::setParameterHash(std::uint64_t parameterHash) {
     contentHash_ = hash.value();
 }
 
-TileLookup TileProvider::tryGet(const Source& source, const TileKey& key, int priority) {
-    (void)priority;
-    Result<TilePointer> produced = tile(source, key);
-    if (!produced) {
-        return {TileLookup::State::Failed, nullptr, produced.error()};
-    }
-    return {TileLookup::State::Ready, produced.value(), {}};
-}
-
 }  // namespace sylva

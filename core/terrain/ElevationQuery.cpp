@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "sylva/core/tiles/Clipmap.h"
+#include "sylva/core/terrain/Clipmap.h"
 
 namespace sylva {
 

@@ -1,6 +1,6 @@
 // GlContext and Framebuffer on Mesa llvmpipe: EGL surfaceless and OSMesa always, GLFW only
 // when an X display is available.
-#include "sylva/render/GlContext.h"
+#include "sylva/render/gl/GlContext.h"
 
 #include <glad/gl.h>
 
@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-#include "sylva/render/Framebuffer.h"
+#include "sylva/render/gl/Framebuffer.h"
 #include "ScopedEnv.h"
 
 namespace sylva::render {

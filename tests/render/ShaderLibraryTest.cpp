@@ -1,6 +1,6 @@
 // ShaderLibrary preprocessing (#include, #line, errors), embedded vs on-disk sources, and
 // ShaderProgram compile errors, uniforms, drawing and compute on Mesa llvmpipe.
-#include "sylva/render/ShaderLibrary.h"
+#include "sylva/render/gl/ShaderLibrary.h"
 
 #include <glad/gl.h>
 
@@ -11,9 +11,9 @@
 #include <optional>
 #include <string>
 
-#include "sylva/render/Framebuffer.h"
-#include "sylva/render/GlContext.h"
-#include "sylva/render/ShaderProgram.h"
+#include "sylva/render/gl/Framebuffer.h"
+#include "sylva/render/gl/GlContext.h"
+#include "sylva/render/gl/ShaderProgram.h"
 #include "ScopedEnv.h"
 
 namespace sylva::render {

@@ -13,11 +13,11 @@
 
 #include "sylva/core/base/Hash.h"
 #include "sylva/core/geo/Ellipsoid.h"
-#include "sylva/core/sources/NormalMapSource.h"
+#include "sylva/core/sources/raster/NormalMapSource.h"
 #include "sylva/core/terrain/ElevationQuery.h"
-#include "sylva/core/tiles/TileEvaluator.h"
-#include "sylva/render/GlContext.h"
-#include "sylva/render/SceneRenderer.h"
+#include "sylva/core/scheduler/TileEvaluator.h"
+#include "sylva/render/gl/GlContext.h"
+#include "sylva/render/scene/SceneRenderer.h"
 
 namespace sylva::render {
 namespace {

@@ -16,10 +16,10 @@
 #include <glm/gtx/matrix_operation.hpp>
 
 #include "sylva/core/geo/Ellipsoid.h"
-#include "sylva/render/Framebuffer.h"
-#include "sylva/render/GlContext.h"
-#include "sylva/render/SceneRenderer.h"
-#include "sylva/render/VegetationRenderer.h"
+#include "sylva/render/gl/Framebuffer.h"
+#include "sylva/render/gl/GlContext.h"
+#include "sylva/render/scene/SceneRenderer.h"
+#include "sylva/render/vegetation/VegetationRenderer.h"
 
 namespace sylva::render {
 namespace {

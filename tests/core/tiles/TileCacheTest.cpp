@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "sylva/core/tiles/TileEvaluator.h"
+#include "sylva/core/scheduler/TileEvaluator.h"
 
 namespace sylva {
 namespace {

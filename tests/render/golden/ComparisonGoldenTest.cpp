@@ -17,10 +17,10 @@
 #include "sylva/core/image/ImageComparison.h"
 #include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/image/ToneMapping.h"
-#include "sylva/core/tiles/TileEvaluator.h"
+#include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/dsl/ProjectLoader.h"
-#include "sylva/render/GlContext.h"
-#include "sylva/render/SceneRenderer.h"
+#include "sylva/render/gl/GlContext.h"
+#include "sylva/render/scene/SceneRenderer.h"
 
 namespace sylva::render {
 namespace {

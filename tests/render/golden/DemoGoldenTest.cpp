@@ -16,13 +16,13 @@
 #include "GoldenImage.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/image/ImageWriter.h"
-#include "sylva/core/scene/BlockReader.h"
+#include "sylva/core/model/BlockReader.h"
 #include "sylva/core/terrain/ElevationQuery.h"
 #include "sylva/core/terrain/LevelVisibility.h"
-#include "sylva/core/tiles/TileEvaluator.h"
+#include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/dsl/ProjectLoader.h"
-#include "sylva/render/GlContext.h"
-#include "sylva/render/SceneRenderer.h"
+#include "sylva/render/gl/GlContext.h"
+#include "sylva/render/scene/SceneRenderer.h"
 
 namespace sylva::render {
 namespace {

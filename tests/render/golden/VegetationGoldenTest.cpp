@@ -14,13 +14,13 @@
 
 #include "GoldenImage.h"
 #include "sylva/core/geo/Ellipsoid.h"
-#include "sylva/core/plants/PlantGenerator.h"
-#include "sylva/core/plants/PlantLodBuilder.h"
-#include "sylva/core/sources/ConstantSource.h"
-#include "sylva/core/sources/NormalMapSource.h"
-#include "sylva/core/tiles/TileEvaluator.h"
-#include "sylva/render/GlContext.h"
-#include "sylva/render/SceneRenderer.h"
+#include "sylva/core/plantlod/PlantGenerator.h"
+#include "sylva/core/plantlod/PlantLodBuilder.h"
+#include "sylva/core/sources/raster/ConstantSource.h"
+#include "sylva/core/sources/raster/NormalMapSource.h"
+#include "sylva/core/scheduler/TileEvaluator.h"
+#include "sylva/render/gl/GlContext.h"
+#include "sylva/render/scene/SceneRenderer.h"
 
 namespace sylva::render {
 namespace {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "sylva/core/base/SourceLocation.h"
-#include "sylva/core/scene/Value.h"
+#include "sylva/core/model/Value.h"
 
 namespace sylva::dsl {
 

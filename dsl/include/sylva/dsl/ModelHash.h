@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "sylva/core/scene/ProjectModel.h"
-#include "sylva/core/scene/Value.h"
+#include "sylva/core/model/ProjectModel.h"
+#include "sylva/core/model/Value.h"
 
 namespace sylva::dsl {
 

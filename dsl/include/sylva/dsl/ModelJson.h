@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "sylva/core/scene/ProjectModel.h"
+#include "sylva/core/model/ProjectModel.h"
 
 namespace sylva::dsl {
 

@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "sylva/core/scene/ProjectModel.h"
-#include "sylva/core/schema/Schema.h"
+#include "sylva/core/model/ProjectModel.h"
+#include "sylva/core/model/Schema.h"
 #include "sylva/dsl/Diagnostic.h"
 #include "sylva/dsl/SourceFiles.h"
 

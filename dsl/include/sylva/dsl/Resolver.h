@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "sylva/core/scene/ProjectModel.h"
-#include "sylva/core/schema/Schema.h"
+#include "sylva/core/model/ProjectModel.h"
+#include "sylva/core/model/Schema.h"
 #include "sylva/dsl/Ast.h"
 #include "sylva/dsl/Diagnostic.h"
 

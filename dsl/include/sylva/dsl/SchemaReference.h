@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "sylva/core/schema/Schema.h"
+#include "sylva/core/model/Schema.h"
 
 namespace sylva::dsl {
 

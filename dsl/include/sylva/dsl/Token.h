@@ -5,7 +5,7 @@
 #include <string>
 
 #include "sylva/core/base/SourceLocation.h"
-#include "sylva/core/scene/Value.h"
+#include "sylva/core/model/Value.h"
 
 namespace sylva::dsl {
 

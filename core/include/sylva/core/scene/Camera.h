@@ -9,7 +9,7 @@
 
 #include "sylva/core/base/Result.h"
 #include "sylva/core/geo/Ellipsoid.h"
-#include "sylva/core/scene/ProjectModel.h"
+#include "sylva/core/model/ProjectModel.h"
 
 namespace sylva {
 

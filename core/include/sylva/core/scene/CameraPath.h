@@ -24,7 +24,7 @@
 
 #include "sylva/core/base/Result.h"
 #include "sylva/core/scene/Camera.h"
-#include "sylva/core/scene/ProjectModel.h"
+#include "sylva/core/model/ProjectModel.h"
 
 namespace sylva {
 

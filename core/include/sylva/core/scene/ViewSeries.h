@@ -31,7 +31,7 @@
 
 #include "sylva/core/base/Result.h"
 #include "sylva/core/scene/DateTime.h"
-#include "sylva/core/scene/ProjectModel.h"
+#include "sylva/core/model/ProjectModel.h"
 
 namespace sylva {
 

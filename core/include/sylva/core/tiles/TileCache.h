@@ -8,7 +8,7 @@
 #include <list>
 #include <unordered_map>
 
-#include "sylva/core/sources/Source.h"
+#include "sylva/core/tiles/TileProvider.h"
 
 namespace sylva {
 

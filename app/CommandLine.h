@@ -1,0 +1,49 @@
+// CommandLine: a small, strict parser for `sylva COMMAND [options] [arguments]`.
+// Options are `--name value`, `--name=value` or flags; `-D name=value` is collected
+// separately. Unknown options are usage errors (exit code 2), never ignored.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sylva/core/base/Result.h"
+#include "sylva/render/gl/GlContext.h"
+
+namespace sylva::app {
+
+struct OptionSpec {
+    std::string name;  // without dashes: "out"
+    bool takesValue = true;
+};
+
+struct ParsedCommandLine {
+    std::vector<std::string> positional;
+    std::map<std::string, std::string> options;  // flags map to ""
+    std::vector<std::pair<std::string, std::string>> defines;
+    std::string error;  // non-empty: a usage error
+
+    bool has(const std::string& name) const { return options.count(name) != 0; }
+    std::optional<std::string> get(const std::string& name) const {
+        auto it = options.find(name);
+        return it == options.end() ? std::nullopt : std::optional<std::string>(it->second);
+    }
+};
+
+// The value of `--cache-mb N` (tile cache budget in MiB, 16..1048576); nullopt when
+// it is not such a whole number.
+std::optional<std::size_t> parseCacheMegabytes(const std::string& text);
+// "WIDTHxHEIGHT" within 1..16384 each (--size); false for anything else.
+bool parseSize(const std::string& text, int& width, int& height);
+
+// The `--gl B` option of the commands that render: the backend, nullopt when absent, or
+// an error "--gl: ..." when B names no backend (a usage error, exit code 2).
+Result<std::optional<render::GlBackend>> glBackendOption(const ParsedCommandLine& command);
+
+ParsedCommandLine parseCommandLine(const std::vector<std::string>& arguments,
+                                   const std::vector<OptionSpec>& specs);
+
+}  // namespace sylva::app

@@ -1,0 +1,108 @@
+// `sylva bench vegetation [--json] [--size WxH] [--trees N] [--leaves N] [--frames N]
+// [--reference-scale N] [--no-scaling] [--methods lod,bbc,mesh] [--write-frames DIR] [--gl B]`: the
+// vegetation renderer benchmark of issue 7 (bench/VegetationBenchmark.h). Prints the metrics as
+// JSON with --json, else one line per metric.
+#include <cstdio>
+#include <cstdlib>
+
+#include "CommandLine.h"
+#include "Commands.h"
+#include "ProjectSession.h"
+#include "sylva/render/gl/GlContext.h"
+#include "sylva/bench/VegetationBenchmark.h"
+
+namespace sylva::app {
+
+int runVegetationBench(const std::vector<std::string>& arguments) {
+    const ParsedCommandLine command = parseCommandLine(arguments, {{"json", false},
+                                                                   {"size"},
+                                                                   {"trees"},
+                                                                   {"leaves"},
+                                                                   {"frames"},
+                                                                   {"reference-scale"},
+                                                                   {"no-scaling", false},
+                                                                   {"methods"},
+                                                                   {"write-frames"},
+                                                                   {"gl"}});
+    if (!command.error.empty() || !command.positional.empty()) {
+        reportError(command.error.empty() ? "bench vegetation takes no arguments" : command.error);
+        return 2;
+    }
+    bench::VegetationBenchmarkOptions options;
+    if (std::optional<std::string> size = command.get("size")) {
+        if (std::sscanf(size->c_str(), "%dx%d", &options.width, &options.height) != 2 ||
+            options.width < 64 || options.height < 64) {
+            reportError("--size expects WIDTHxHEIGHT (at least 64x64)");
+            return 2;
+        }
+    }
+    const auto integer = [&](const char* name, int minimum, int maximum, int& target) {
+        if (std::optional<std::string> value = command.get(name)) {
+            char* end = nullptr;
+            const long parsed = std::strtol(value->c_str(), &end, 10);
+            if (end == value->c_str() || *end != '\0' || parsed < minimum || parsed > maximum) {
+                reportError(std::string("--") + name + " expects a whole number within " +
+                            std::to_string(minimum) + ".." + std::to_string(maximum));
+                return false;
+            }
+            target = int(parsed);
+        }
+        return true;
+    };
+    if (!integer("trees", 1, 10000000, options.trees) ||
+        !integer("leaves", 50, 100000, options.leaves) ||
+        !integer("frames", 1, 100, options.framesPerSegment) ||
+        !integer("reference-scale", 1, 8, options.referenceScale)) {
+        return 2;
+    }
+    options.scaling = !command.has("no-scaling");
+    if (std::optional<std::string> methods = command.get("methods")) {
+        options.lod = options.billboards = options.mesh = false;
+        std::size_t start = 0;
+        while (start <= methods->size()) {
+            const std::size_t end = std::min(methods->find(',', start), methods->size());
+            const std::string method = methods->substr(start, end - start);
+            if (method == "lod") {
+                options.lod = true;
+            } else if (method == "bbc") {
+                options.billboards = true;
+            } else if (method == "mesh") {
+                options.mesh = true;
+            } else {
+                reportError("--methods expects a comma-separated list of lod, bbc and mesh (got '" +
+                            method + "')");
+                return 2;
+            }
+            start = end + 1;
+        }
+    }
+    options.framesFolder = command.get("write-frames").value_or("");
+    render::ContextOptions contextOptions;
+    Result<std::optional<render::GlBackend>> backend = glBackendOption(command);
+    if (!backend) {
+        reportError(backend.error().message);
+        return 2;
+    }
+    contextOptions.backend = backend.value();
+    Result<std::unique_ptr<render::GlContext>> context = render::GlContext::create(contextOptions);
+    if (!context) {
+        reportError(context.error().message);
+        return 1;
+    }
+    Result<bench::VegetationBenchmarkResult> result =
+        bench::runVegetationBenchmark(render::ShaderLibrary(), options);
+    if (!result) {
+        reportError(result.error().message);
+        return 1;
+    }
+    if (command.has("json")) {
+        std::puts(result->json().c_str());
+    } else {
+        for (const auto& [key, value] : result->metrics) {
+            std::printf("%-24s %.6g\n", key.c_str(), value);
+        }
+    }
+    return 0;
+}
+
+}  // namespace sylva::app

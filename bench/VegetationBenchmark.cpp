@@ -1,0 +1,468 @@
+#include "sylva/bench/VegetationBenchmark.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <numbers>
+#include <random>
+#include <span>
+#include <vector>
+
+#include "sylva/core/geo/Ellipsoid.h"
+#include "sylva/core/image/ImageWriter.h"
+#include "sylva/core/plantlod/BillboardCloudBuilder.h"
+#include "sylva/core/plantlod/ImageErrorMetric.h"
+#include "sylva/core/plantlod/PlantGenerator.h"
+#include "sylva/core/plantlod/PlantLodBuilder.h"
+#include "sylva/core/sources/raster/ConstantSource.h"
+#include "sylva/core/sources/raster/NormalMapSource.h"
+#include "sylva/core/scheduler/TileEvaluator.h"
+#include "sylva/render/scene/SceneRenderer.h"
+
+namespace sylva::bench {
+
+using namespace sylva::render;
+
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180;
+constexpr double kGround = 120.0;  // metres: the flat terrain
+constexpr double kLatitude = 46.5 * kDegree, kLongitude = 7.5 * kDegree;
+constexpr double kMetresPerRadian = 6367000.0;
+
+double median(std::vector<double> values) {
+    if (values.empty()) {
+        return 0.0;
+    }
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+double srgbToLinear(std::uint8_t value) {
+    const double c = value / 255.0;
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+// Linear luminance of an RGBA8 sRGB image, box-filtered by `scale` in each direction.
+std::vector<float> luminance(const Image& image, int scale) {
+    const int width = image.width / scale, height = image.height / scale;
+    std::vector<float> out(std::size_t(width) * height, 0.0f);
+    std::vector<double> table(256);
+    for (int i = 0; i < 256; ++i) {
+        table[i] = srgbToLinear(std::uint8_t(i));
+    }
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            double sum = 0.0;
+            for (int dy = 0; dy < scale; ++dy) {
+                const std::uint8_t* row =
+                    image.pixels.data() +
+                    (std::size_t(y * scale + dy) * image.width + x * scale) * 4;
+                for (int dx = 0; dx < scale; ++dx) {
+                    const std::uint8_t* p = row + dx * 4;
+                    sum += 0.2126 * table[p[0]] + 0.7152 * table[p[1]] + 0.0722 * table[p[2]];
+                }
+            }
+            out[std::size_t(y) * width + x] = float(sum / (scale * scale));
+        }
+    }
+    return out;
+}
+
+// The multi-scale RMSE of seed 001 §3.5 over a whole frame: the metric needs square
+// power-of-two images, so the frame is covered by 256² blocks (the last row and column
+// of blocks overlap their neighbours) and the block values are averaged.
+double frameError(const std::vector<float>& a, const std::vector<float>& b, int width, int height) {
+    constexpr int kBlock = 256;
+    std::vector<int> xs, ys;
+    for (int x = 0; x + kBlock <= width; x += kBlock) {
+        xs.push_back(x);
+    }
+    if (width % kBlock != 0 && width > kBlock) {
+        xs.push_back(width - kBlock);
+    }
+    for (int y = 0; y + kBlock <= height; y += kBlock) {
+        ys.push_back(y);
+    }
+    if (height % kBlock != 0 && height > kBlock) {
+        ys.push_back(height - kBlock);
+    }
+    if (xs.empty() || ys.empty()) {
+        return 0.0;
+    }
+    std::vector<float> blockA(kBlock * kBlock), blockB(kBlock * kBlock);
+    double sum = 0.0;
+    for (int y0 : ys) {
+        for (int x0 : xs) {
+            for (int y = 0; y < kBlock; ++y) {
+                std::copy_n(a.begin() + std::ptrdiff_t(y0 + y) * width + x0, kBlock,
+                            blockA.begin() + y * kBlock);
+                std::copy_n(b.begin() + std::ptrdiff_t(y0 + y) * width + x0, kBlock,
+                            blockB.begin() + y * kBlock);
+            }
+            sum += multiScaleRmse(multiScaleSquaredErrors(blockA, blockB, kBlock));
+        }
+    }
+    return sum / double(xs.size() * ys.size());
+}
+
+// One key of the path: offsets north/east of the forest centre (metres), height above
+// the ground, heading and pitch (radians).
+struct PathKey {
+    double north, east, height, heading, pitch;
+};
+
+Camera cameraAt(const std::vector<PathKey>& keys, double t) {
+    const double clamped = std::clamp(t, 0.0, double(keys.size() - 1));
+    const std::size_t i = std::min(std::size_t(clamped), keys.size() - 2);
+    const double u = clamped - double(i);
+    const PathKey& a = keys[i];
+    const PathKey& b = keys[i + 1];
+    const auto mix = [u](double x, double y) { return x + (y - x) * u; };
+    Camera c;
+    c.geodetic.latitude = kLatitude + mix(a.north, b.north) / kMetresPerRadian;
+    c.geodetic.longitude =
+        kLongitude + mix(a.east, b.east) / (kMetresPerRadian * std::cos(kLatitude));
+    c.geodetic.height = kGround + mix(a.height, b.height);
+    c.position = Ellipsoid::toEcef(c.geodetic);
+    c.axes =
+        Camera::axesFromAngles(c.geodetic, mix(a.heading, b.heading), mix(a.pitch, b.pitch), 0.0);
+    c.verticalFov = 50.0 * kDegree;
+    return c;
+}
+
+// Forest groups of about 1,000 trees each (jittered 7 m grid in a disc of ~125 m radius),
+// group centres on a jittered grid `spacing` metres apart around the origin.
+std::vector<InstanceBatch> makeForest(int trees, std::uint32_t species,
+                                      const std::vector<SpeciesLod>& lods, std::uint32_t seed) {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const int groups = std::max(1, (trees + 999) / 1000);
+    const int side = int(std::ceil(std::sqrt(double(groups))));
+    const double spacing = 400.0;
+    // Grid cells nearest to the origin first: the first group sits at the centre.
+    std::vector<glm::ivec2> cellsByDistance;
+    for (int i = 0; i < side * side; ++i) {
+        cellsByDistance.emplace_back(i % side - side / 2, i / side - side / 2);
+    }
+    std::stable_sort(
+        cellsByDistance.begin(), cellsByDistance.end(),
+        [](glm::ivec2 a, glm::ivec2 b) { return a.x * a.x + a.y * a.y < b.x * b.x + b.y * b.y; });
+    std::vector<InstanceBatch> batches;
+    int remaining = trees;
+    for (int g = 0; g < groups; ++g) {
+        const double jitter = g == 0 ? 0.0 : 1.0;
+        const double gx = cellsByDistance[g].x * spacing + (unit(random) - 0.5) * 80.0 * jitter;
+        const double gy = cellsByDistance[g].y * spacing + (unit(random) - 0.5) * 80.0 * jitter;
+        const int count = std::min(remaining, 1000);
+        remaining -= count;
+        std::vector<InstancePlacement> placements;
+        const double cell = 7.0;
+        const int cells = int(std::ceil(std::sqrt(count / (std::numbers::pi / 4)))) + 1;
+        for (int iy = 0; iy < cells && int(placements.size()) < count; ++iy) {
+            for (int ix = 0; ix < cells && int(placements.size()) < count; ++ix) {
+                const double x = (ix - cells * 0.5 + unit(random)) * cell;
+                const double y = (iy - cells * 0.5 + unit(random)) * cell;
+                if (x * x + y * y > std::pow(cells * 0.5 * cell, 2)) {
+                    continue;
+                }
+                InstancePlacement p;
+                p.latitude = kLatitude + (gy + y) / kMetresPerRadian;
+                p.longitude = kLongitude + (gx + x) / (kMetresPerRadian * std::cos(kLatitude));
+                // Sunk 0.2 m so that stems stand in the ground.
+                p.baseEcef = Ellipsoid::toEcef({p.latitude, p.longitude, kGround - 0.2});
+                p.heading = float(unit(random) * 2 * std::numbers::pi);
+                p.scale = float(0.8 + 0.4 * unit(random));
+                p.tint = glm::vec3(float(0.85 + 0.3 * unit(random)));
+                p.species = species;
+                placements.push_back(p);
+            }
+        }
+        const glm::dvec3 origin = Ellipsoid::toEcef(
+            {kLatitude + gy / kMetresPerRadian,
+             kLongitude + gx / (kMetresPerRadian * std::cos(kLatitude)), kGround});
+        batches.push_back(LodSelector::makeBatch(origin, placements, lods));
+    }
+    return batches;
+}
+
+std::vector<const InstanceBatch*> pointers(const std::vector<InstanceBatch>& batches) {
+    std::vector<const InstanceBatch*> out;
+    for (const InstanceBatch& b : batches) {
+        out.push_back(&b);
+    }
+    return out;
+}
+
+const char* methodName(VegetationMethod method) {
+    switch (method) {
+        case VegetationMethod::Lod:
+            return "lod";
+        case VegetationMethod::Billboard:
+            return "bbc";
+        case VegetationMethod::Mesh:
+            return "mesh";
+    }
+    return "?";
+}
+
+}  // namespace
+
+std::string VegetationBenchmarkResult::json() const {
+    std::string out = "{\"suite\":\"vegetation\",\"metrics\":{";
+    bool first = true;
+    for (const auto& [name, value] : metrics) {
+        char buffer[128];
+        std::snprintf(buffer, sizeof buffer, "%s\"%s\":%.6g", first ? "" : ",", name.c_str(),
+                      value);
+        out += buffer;
+        first = false;
+    }
+    return out + "}}";
+}
+
+Result<VegetationBenchmarkResult> runVegetationBenchmark(
+    const ShaderLibrary& library, const VegetationBenchmarkOptions& options) {
+    VegetationBenchmarkResult result;
+    const auto log = [](const char* text) { std::fprintf(stderr, "bench vegetation: %s\n", text); };
+
+    // The plant: a generated oak, its LoD and billboard clouds (not timed).
+    log("building the plant (generator, LoD, billboard clouds)");
+    Result<TreeParameters> preset = PlantGenerator::preset("oak");
+    if (!preset) {
+        return preset.error();
+    }
+    PlantGeneratorOptions generatorOptions;
+    generatorOptions.seed = 1;
+    generatorOptions.leafCount = options.leaves;
+    Result<PlantModel> model = PlantGenerator::generate(preset.value(), generatorOptions);
+    if (!model) {
+        return model.error();
+    }
+    Result<PlantLod> lod = buildPlantLod(model.value(), PlantLodOptions{});
+    if (!lod) {
+        return lod.error();
+    }
+    if (Status billboards = addBillboardClouds(model.value(), lod.value(), PlantLodOptions{});
+        !billboards) {
+        return billboards.error();
+    }
+    auto asset = std::make_shared<PlantAsset>();
+    asset->name = "oak";
+    asset->model = std::move(model.value());
+    asset->lod = std::move(lod.value());
+
+    const ConstantSource elevation("flat", kGround);
+    const ConstantSource color("meadow", glm::vec4(0.10f, 0.14f, 0.05f, 1.0f));
+    const NormalMapSource normals("flat.normals", &elevation, 1.0);
+    const TerrainLayers layers{&elevation, &color, &normals, {}};
+    TileEvaluator evaluator(TileFormat{256, 2});
+    TerrainSettings terrainSettings;
+    Result<std::unique_ptr<SceneRenderer>> created =
+        SceneRenderer::create(library, terrainSettings);
+    if (!created) {
+        return created.error();
+    }
+    SceneRenderer& renderer = *created.value();
+    const std::uint32_t species = renderer.vegetation().addSpecies(asset);
+    const std::vector<SpeciesLod>& lods = renderer.vegetation().speciesLods();
+
+    // Overview → descent → inside the forest → turn. The first group is at the centre.
+    const std::vector<PathKey> keys = {
+        {-2600.0, 0.0, 700.0, 0.0, -14.0 * kDegree},  // overview
+        {-1500.0, 0.0, 450.0, 0.0, -16.0 * kDegree},  // descent starts
+        {-160.0, 0.0, 12.0, 0.0, -2.0 * kDegree},     // at the forest edge
+        {-20.0, 0.0, 1.7, 0.0, 0.0},                  // inside the forest
+        {-20.0, 0.0, 1.7, std::numbers::pi, 0.0},     // turned around
+    };
+    const int segments = int(keys.size()) - 1;
+    const int frames = segments * options.framesPerSegment + 1;
+    const double segmentSeconds = 5.0;  // path time per segment, for the 1/25 s step
+    const double nextFrame = 1.0 / (25.0 * segmentSeconds);
+
+    RenderSettings settings;
+    settings.width = options.width;
+    settings.height = options.height;
+    settings.sunDirection =
+        glm::normalize(Ellipsoid::surfaceNormal(kLatitude - 0.5, kLongitude - 0.6));
+    settings.atmosphere = true;
+    settings.ocean = false;
+
+    const std::vector<InstanceBatch> forest = makeForest(options.trees, species, lods, 7);
+    const auto renderTimed = [&](const Camera& c, const std::vector<const InstanceBatch*>& batches,
+                                 VegetationMethod method, double& seconds) -> Result<Image> {
+        settings.instanceBatches = batches;
+        settings.vegetation = VegetationSettings{};
+        settings.vegetation.method = method;
+        // The methods are compared as themselves: no mesh handover for the LoD.
+        settings.vegetation.closeUpMesh = false;
+        const auto start = std::chrono::steady_clock::now();
+        Result<Image> image = renderer.render(layers, evaluator, c, settings);
+        seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return image;
+    };
+
+    const VegetationMethod methods[3] = {VegetationMethod::Lod, VegetationMethod::Billboard,
+                                         VegetationMethod::Mesh};
+    std::map<VegetationMethod, std::vector<double>> plantMilliseconds;
+    std::map<VegetationMethod, std::vector<double>> referenceError, temporalError;
+    const bool haveBillboards = !lods[species].billboardError.empty();
+    if (!options.framesFolder.empty()) {
+        std::filesystem::create_directories(options.framesFolder);
+    }
+    for (int frame = 0; frame < frames; ++frame) {
+        const double t = double(frame) / options.framesPerSegment;
+        const Camera c = cameraAt(keys, t);
+        char line[96];
+        std::snprintf(line, sizeof line, "frame %d/%d", frame + 1, frames);
+        log(line);
+        double seconds = 0.0;
+        // Warm-up (fills the tile cache), then the frame without plants.
+        if (Result<Image> warm = renderTimed(c, {}, VegetationMethod::Lod, seconds); !warm) {
+            return warm.error();
+        }
+        double bare = 0.0;
+        if (Result<Image> empty = renderTimed(c, {}, VegetationMethod::Lod, bare); !empty) {
+            return empty.error();
+        }
+        const bool sampled = frame % options.framesPerSegment == 0 && frame > 0 && options.mesh;
+        std::vector<float> reference;
+        if (sampled) {
+            settings.width = options.width * options.referenceScale;
+            settings.height = options.height * options.referenceScale;
+            Result<Image> image = renderTimed(c, pointers(forest), VegetationMethod::Mesh, seconds);
+            settings.width = options.width;
+            settings.height = options.height;
+            if (!image) {
+                return image.error();
+            }
+            reference = luminance(image.value(), options.referenceScale);
+        }
+        for (VegetationMethod method : methods) {
+            if ((method == VegetationMethod::Billboard &&
+                 (!haveBillboards || !options.billboards)) ||
+                (method == VegetationMethod::Lod && !options.lod) ||
+                (method == VegetationMethod::Mesh && !options.mesh)) {
+                continue;
+            }
+            Result<Image> image = renderTimed(c, pointers(forest), method, seconds);
+            if (!image) {
+                return image.error();
+            }
+            plantMilliseconds[method].push_back(std::max(0.0, seconds - bare) * 1000.0);
+            const VegetationStatistics& drawn = renderer.vegetation().statistics();
+            char detail[256];
+            std::snprintf(detail, sizeof detail,
+                          "  %s: %.0f ms (frame without plants %.0f ms); %zu instances, %zu "
+                          "ellipsoids, %zu lines, "
+                          "%zu meshes, %zu billboard clouds, select %.1f ms, %zu quad passes",
+                          methodName(method), plantMilliseconds[method].back(), bare * 1000.0,
+                          drawn.drawnInstances, drawn.ellipsoids, drawn.lines, drawn.meshInstances,
+                          drawn.billboardInstances, drawn.selectSeconds * 1000.0,
+                          drawn.quadPassRuns);
+            log(detail);
+            if (!options.framesFolder.empty()) {
+                char name[64];
+                std::snprintf(name, sizeof name, "/frame%02d_%s.png", frame, methodName(method));
+                (void)ImageWriter::writeRgba8(options.framesFolder + name, image.value().width,
+                                              image.value().height, image.value().pixels);
+            }
+            if (!sampled) {
+                continue;
+            }
+            const std::vector<float> current = luminance(image.value(), 1);
+            referenceError[method].push_back(
+                frameError(current, reference, options.width, options.height));
+            Result<Image> next =
+                renderTimed(cameraAt(keys, t + nextFrame), pointers(forest), method, seconds);
+            if (!next) {
+                return next.error();
+            }
+            temporalError[method].push_back(
+                frameError(current, luminance(next.value(), 1), options.width, options.height));
+        }
+    }
+    const auto mean = [](const std::vector<double>& v) {
+        double s = 0.0;
+        for (double x : v) {
+            s += x;
+        }
+        return v.empty() ? 0.0 : s / double(v.size());
+    };
+    // Metrics of the methods that ran (all of them unless the options leave some out).
+    const auto ran = [&](VegetationMethod method) { return !plantMilliseconds[method].empty(); };
+    for (VegetationMethod method : methods) {
+        if (!ran(method)) {
+            continue;
+        }
+        const std::string name = methodName(method);
+        result.metrics[name + "_ms_median"] = median(plantMilliseconds[method]);
+        if (!referenceError[method].empty()) {
+            result.metrics["rmse_ref_" + name] = mean(referenceError[method]);
+            result.metrics["temporal_" + name] = mean(temporalError[method]);
+        }
+    }
+    const auto ratio = [&](const char* key, VegetationMethod slower) {
+        if (ran(VegetationMethod::Lod) && ran(slower)) {
+            result.metrics[key] = result.metrics[std::string(methodName(slower)) + "_ms_median"] /
+                                  std::max(result.metrics["lod_ms_median"], 1e-6);
+        }
+    };
+    ratio("lod_vs_mesh", VegetationMethod::Mesh);
+    ratio("lod_vs_bbc", VegetationMethod::Billboard);
+    result.metrics["trees"] = options.trees;
+    result.metrics["frames"] = frames;
+    result.metrics["lod_ellipsoids"] = double(asset->lod.ellipsoids.size());
+    result.metrics["lod_lines"] = double(asset->lod.lines.size());
+
+    if (options.scaling && options.lod) {
+        for (const int count : {100000, 1000000}) {
+            char line[96];
+            std::snprintf(line, sizeof line, "scaling: %d instances", count);
+            log(line);
+            const std::vector<InstanceBatch> many = makeForest(count, species, lods, 11);
+            std::vector<double> milliseconds;
+            for (int segment = 1; segment <= segments; ++segment) {
+                const Camera c = cameraAt(keys, double(segment) - 0.5);
+                double bare = 0.0, seconds = 0.0;
+                (void)renderTimed(c, {}, VegetationMethod::Lod, seconds);
+                (void)renderTimed(c, {}, VegetationMethod::Lod, bare);
+                Result<Image> image =
+                    renderTimed(c, pointers(many), VegetationMethod::Lod, seconds);
+                if (!image) {
+                    return image.error();
+                }
+                milliseconds.push_back(std::max(0.0, seconds - bare) * 1000.0);
+            }
+            result.metrics[count == 100000 ? "lod_ms_100k" : "lod_ms_1m"] = median(milliseconds);
+            if (count == 1000000) {
+                // The selection alone (CPU), from every segment's midpoint.
+                LodSelectionSettings selection;
+                selection.pixelAngle = 2.0 * std::tan(25.0 * kDegree) / options.height;
+                LodSelector::setFrustum(selection, 50.0 * kDegree,
+                                        double(options.width) / options.height);
+                LodSelection out;
+                std::vector<double> selectMilliseconds;
+                for (int run = 0; run < 3; ++run) {
+                    for (int segment = 1; segment <= segments; ++segment) {
+                        const Camera c = cameraAt(keys, double(segment) - 0.5);
+                        const auto start = std::chrono::steady_clock::now();
+                        LodSelector::select(pointers(many), lods, c, selection, out);
+                        selectMilliseconds.push_back(std::chrono::duration<double, std::milli>(
+                                                         std::chrono::steady_clock::now() - start)
+                                                         .count());
+                    }
+                }
+                result.metrics["select_ms_1m"] = median(selectMilliseconds);
+                result.metrics["select_visible_1m"] = double(out.visibleInstances);
+            }
+        }
+    }
+    return result;
+}
+
+}  // namespace sylva::bench

@@ -1,0 +1,61 @@
+// BlendSource (`source x : blend`): lays `over` on `base`, per texel.
+//
+// Weight w = opacity x mask x coverage(over) x fade, where coverage(over) is the
+// image's alpha, or for elevation the coverage mask of a raster (coverageOf()), and
+// fade (feather > 0) = smoothstep(0.5, 1, C) with C the over-coverage at the coarser
+// pyramid level whose texels are about twice `feather`, bilinearly interpolated at
+// the texel centre. C is 0.5 on the coverage edge and reaches 1 about half a coarse
+// texel inside, so the fade starts at the edge and is complete about `feather` metres
+// inside it (an over-source narrower than a few coarse texels never reaches full
+// weight: keep feather well below its size); being taken from one fixed level it is the same at
+// every requested level and continuous across tiles (the coarse tile's border covers the bilinear
+// footprint). This is a blurred-coverage feather in the spirit of alpha feathering in
+// image compositing (Porter & Duff 1984 for the operators).
+//
+// Images (linear RGB, straight alpha): mixed(base, f(base, over), w) with f =
+// over (normal), base*over (multiply), 1-(1-base)(1-over) (screen), base+over (add),
+// min, max; alpha = w + base.a (1 - w). Elevation: replace/normal mix(base, over, w),
+// add base + w over, min/max mix(base, min/max(base, over), w).
+// Fails when an input fails (the input's error).
+#pragma once
+
+#include "sylva/core/sources/Source.h"
+#include "sylva/core/sources/SourceBuildContext.h"
+
+namespace sylva {
+
+enum class BlendMode { Normal, Multiply, Screen, Add, Min, Max };
+
+struct BlendParameters {
+    BlendMode mode = BlendMode::Normal;
+    double opacity = 1.0;
+    double feather = 0.0;  // metres
+};
+
+class BlendSource final : public Source {
+public:
+    // `base` and `over` of the same port type (elevation or image); `mask` optional.
+    BlendSource(std::string name, const Source* base, const Source* over, const Source* mask,
+                const BlendParameters& parameters);
+
+    static Result<std::unique_ptr<Source>> create(const SourceBuildContext& context);
+
+    Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override;
+
+    // The Mask source giving the coverage of an elevation source, or nullptr when it
+    // covers everything: a raster's coverage(); a blend passes on its base's, an
+    // elevation_edit its input's.
+    static const Source* coverageOf(const Source& elevation);
+
+    // Pyramid level whose texel height is about twice `feather` metres (at most `level`).
+    static int featherLevel(double featherMetres, int tileSize, int level);
+
+private:
+    const Source* base_;
+    const Source* over_;
+    const Source* mask_;
+    const Source* overCoverage_;  // elevation: coverageOf(over); image: over itself (alpha)
+    BlendParameters parameters_;
+};
+
+}  // namespace sylva

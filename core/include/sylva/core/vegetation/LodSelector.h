@@ -1,0 +1,170 @@
+// LodSelector: per-instance level-of-detail selection for the vegetation renderer
+// (seed 001 §6.3), on the CPU, once per instance and never per primitive.
+//
+// The error an instance tolerates is the size of one pixel at its distance, in metres
+// (e = distance × pixel angle / quality), the unit of the PlantLod error intervals. The
+// thesis interpolates a per-model table from the projected bounding box; since the
+// intervals are already in metres per pixel, the table collapses to this product.
+//
+// Instead of one draw per instance (what a sequential primitive tree would issue), the
+// error axis is cut into geometric buckets (ratio kBucketRatio). Every instance of one
+// species and bucket draws the same prefix of the primitive arrays — the prefix for the
+// bucket's smallest error, widened by half the screen-door transition band — so a frame
+// is a few instanced draws per species. Primitives of the prefix outside an instance's
+// own interval are dropped by the vertex shader, which also fades primitives within the
+// band around their interval ends by a dither pattern (screen-door transparency, Mulder
+// et al. 1998): the finer and the coarser set are drawn on complementary pixels, so no
+// LoD step pops. The same fade hands over from the source mesh (close-ups) to the finest
+// LoD, and between billboard-cloud levels.
+//
+// Cost: one pass over the instances (transform to view space, sphere/frustum test, error,
+// bucket), a counting sort, and a pass writing the selected instances' view transforms;
+// the work is split over the cores. Frames: instances are stored relative to a double-
+// precision ECEF origin per batch; everything the GPU sees is in camera-relative view
+// space (metres, float).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "sylva/core/plantlod/PlantAsset.h"
+#include "sylva/core/scene/Camera.h"
+
+namespace sylva {
+
+// Instances near one ECEF origin (a tile, or a hand-made group in tests and benchmarks),
+// stored as they are consumed every frame.
+struct InstanceBatch {
+    glm::dvec3 origin{0.0};  // ECEF, metres
+    struct Instance {
+        glm::vec3 base{0.0f};    // stem base relative to origin, ECEF metres
+        glm::vec3 axes[3];       // model x, y, z in ECEF (rotation and scale applied)
+        glm::vec3 center{0.0f};  // bounding-sphere centre relative to origin, ECEF metres
+        float radius = 0.0f;     // bounding-sphere radius, metres
+        glm::vec3 tint{1.0f};    // linear RGB factor
+        std::uint32_t species = 0;
+        std::uint32_t hash = 0;  // decorrelates the dither patterns of neighbours
+    };
+    std::vector<Instance> instances;
+    // Per instance (same order): bounding-sphere centre relative to origin (xyz, ECEF
+    // metres) and radius (w) — all the culling pass reads, packed so that it streams
+    // 16 bytes per instance instead of the whole Instance.
+    std::vector<glm::vec4> spheres;
+    // Bounding sphere of all instances' spheres, relative to origin (per-tile culling).
+    glm::vec3 boundsCenter{0.0f};
+    float boundsRadius = 0.0f;
+    float largestInstanceRadius = 0.0f;
+};
+
+// One instance placed on the globe: `up` is the ellipsoid normal at its base, heading
+// is clockwise from north (radians), scale multiplies the model.
+struct InstancePlacement {
+    glm::dvec3 baseEcef{0.0};
+    double latitude = 0.0, longitude = 0.0;  // radians (to build the local frame)
+    float heading = 0.0f;
+    float scale = 1.0f;
+    glm::vec3 tint{1.0f};
+    std::uint32_t species = 0;
+};
+
+// Per species: the bounding sphere of the model and the primitive prefix per bucket.
+struct SpeciesLod {
+    glm::vec3 sphereCenter{0.0f};  // model frame, metres
+    float sphereRadius = 0.0f;     // metres
+    float meshError = 0.0f;        // below this error the source mesh is drawn (0: never)
+    std::uint32_t ellipsoidCount = 0;
+    std::uint32_t lineCount = 0;
+    // Per bucket: primitives of the prefix (arrays sorted by errorMaximum descending).
+    std::vector<std::uint32_t> ellipsoidPrefix;
+    std::vector<std::uint32_t> linePrefix;
+    // Per bucket: the largest radius (metres, model frame) of an ellipsoid an instance of
+    // the bucket may draw — what the renderer needs to bound the sprite sizes of a run.
+    std::vector<float> ellipsoidRadius;
+    // Billboard-cloud levels: level i is drawn in [billboardError[i], billboardError[i+1]).
+    std::vector<float> billboardError;
+};
+
+enum class VegetationMethod : std::uint8_t {
+    Lod,        // ellipsoids and lines (the source mesh for close-ups when enabled)
+    Billboard,  // billboard clouds (comparison, seed 003)
+    Mesh,       // the source mesh everywhere (reference)
+};
+
+struct LodSelectionSettings {
+    double pixelAngle = 1e-3;      // radians per pixel (vertical field of view / height)
+    double quality = 1.0;          // > 1 draws finer levels
+    double minimumPixels = 1.5;    // instances smaller than this on screen are skipped
+    double maximumDistance = 0.0;  // metres; 0 = no limit besides minimumPixels
+    double transitionBand = 0.35;  // width of the screen-door fades in ln(error)
+    bool closeUpMesh = true;       // Lod method: hand over to the source mesh up close
+    VegetationMethod method = VegetationMethod::Lod;
+    // View frustum: the four side planes in view space (inward unit normals through the
+    // origin) and the near distance in metres.
+    glm::vec3 sidePlanes[4];
+    double near = 0.1;
+};
+
+// What the GPU receives per drawn instance: the model → view transform (three axis
+// columns and the origin, view space, metres) and the tint, the tolerated error and the
+// dither hash. 80 bytes, std430/vertex-attribute friendly.
+struct DrawInstance {
+    glm::vec4 axisX;   // xyz, w: tolerated error (metres per pixel)
+    glm::vec4 axisY;   // xyz, w: dither offset in [0, 1) from the instance hash
+    glm::vec4 axisZ;   // xyz, w: unused
+    glm::vec4 origin;  // xyz, w: 1
+    glm::vec4 tint;    // rgb, a: 1
+};
+
+// A run of instances drawing the same thing: `kind` Primitives uses the species'
+// prefix of bucket `bucket`; Mesh draws the source mesh; Billboard draws level `level`.
+struct DrawRun {
+    enum class Kind : std::uint8_t { Primitives, Mesh, Billboard } kind = Kind::Primitives;
+    std::uint32_t species = 0;
+    std::uint32_t bucket = 0;  // Primitives: bucket; Billboard: level
+    std::uint32_t ellipsoids = 0, lines = 0;
+    std::uint32_t firstInstance = 0;
+    std::uint32_t instanceCount = 0;
+};
+
+struct LodSelection {
+    std::vector<DrawInstance> instances;
+    std::vector<DrawRun> runs;
+    std::size_t consideredInstances = 0;
+    std::size_t visibleInstances = 0;
+    std::size_t drawnEllipsoids = 0;  // upper bound: prefixes times instances
+    std::size_t drawnLines = 0;
+};
+
+class LodSelector {
+public:
+    static constexpr int kBucketCount = 64;
+    static constexpr double kBucketRatio = 1.25;
+    static constexpr double kSmallestError = 1e-4;  // metres per pixel of bucket 0
+
+    // The tables of one species; meshError is the finest ellipsoid level's own error
+    // (below it a leaf covers more than ~5 pixels and the source mesh is drawn).
+    // billboardError is left empty: the renderer fills it when it has billboard levels.
+    static SpeciesLod describe(const PlantAsset& asset, double transitionBand);
+
+    // Builds a batch from placements (local frame: east, north, up at each base; model
+    // +Y to the heading). `species` gives each species' bounding sphere.
+    static InstanceBatch makeBatch(const glm::dvec3& origin,
+                                   const std::vector<InstancePlacement>& placements,
+                                   const std::vector<SpeciesLod>& species);
+
+    static int bucketOf(double error);
+    static double bucketLowerError(int bucket);
+
+    // Selects and fills `out` (reused between frames to keep its capacity).
+    static void select(const std::vector<const InstanceBatch*>& batches,
+                       const std::vector<SpeciesLod>& species, const Camera& camera,
+                       const LodSelectionSettings& settings, LodSelection& out);
+
+    // The frustum side planes of a symmetric perspective camera, view space.
+    static void setFrustum(LodSelectionSettings& settings, double verticalFov, double aspect);
+};
+
+}  // namespace sylva

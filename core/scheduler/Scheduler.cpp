@@ -1,0 +1,567 @@
+#include "sylva/core/scheduler/Scheduler.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <tuple>
+
+#include "sylva/core/base/ParallelFor.h"
+
+#if defined(__linux__)
+#include <sys/resource.h>
+#include <unistd.h>
+#endif
+
+namespace sylva {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Seconds spent in nested produce() calls and in waits for inputs on this thread, so
+// each source's produce time excludes its inputs (seed 001 §4.6: depth-first).
+thread_local double nestedSeconds = 0.0;
+
+// Lowers the calling thread's OS priority by `increment` nice steps (Linux: nice is
+// per thread; setpriority on the thread id affects only this thread).
+void lowerThreadPriority(int increment) {
+#if defined(__linux__)
+    if (increment <= 0) {
+        return;
+    }
+    const id_t thread = static_cast<id_t>(gettid());
+    errno = 0;
+    const int current = getpriority(PRIO_PROCESS, thread);
+    if (errno == 0) {
+        (void)setpriority(PRIO_PROCESS, thread, std::min(19, current + increment));
+    }
+#else
+    (void)increment;
+#endif
+}
+
+}  // namespace
+
+Scheduler::Scheduler(SchedulerOptions options) : options_(std::move(options)) {
+    int workers = options_.workers;
+    if (workers <= 0) {
+        workers = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    }
+    manager_ = std::thread([this] {
+        lowerThreadPriority(options_.workerNiceIncrement > 0 ? 1 : 0);
+        managerLoop();
+    });
+    for (int i = 0; i < workers; ++i) {
+        workers_.emplace_back([this] {
+            lowerThreadPriority(options_.workerNiceIncrement);
+            disableParallelForOnThisThread();
+            workerLoop();
+        });
+    }
+}
+
+Scheduler::~Scheduler() {
+    {
+        std::lock_guard lock(mutex_);
+        stopping_ = true;
+    }
+    managerWake_.notify_all();
+    workerWake_.notify_all();
+    manager_.join();
+    for (std::thread& worker : workers_) {
+        worker.join();
+    }
+}
+
+int Scheduler::focusDistance(const TileKey& key, double latitude, double longitude) {
+    const double columns = key.columns();
+    const double rows = key.rows();
+    const double fx = (longitude + std::numbers::pi) / (2 * std::numbers::pi) * columns;
+    const double fy = (std::numbers::pi / 2 - latitude) / std::numbers::pi * rows;
+    // A clipmap window is one tile wide around the focus, so it touches the quad of
+    // tiles [floor(f - 1/2), floor(f + 1/2)] in each direction (Fig. 4.3b).
+    const auto x0 = static_cast<std::int64_t>(std::floor(fx - 0.5));
+    const auto x1 = static_cast<std::int64_t>(std::floor(fx + 0.5));
+    const auto y0 = static_cast<std::int64_t>(std::floor(fy - 0.5));
+    const auto y1 = static_cast<std::int64_t>(std::floor(fy + 0.5));
+    const auto span = [](std::int64_t v, std::int64_t lo, std::int64_t hi) -> std::int64_t {
+        return v < lo ? lo - v : (v > hi ? v - hi : 0);
+    };
+    const auto n = static_cast<std::int64_t>(columns);
+    std::int64_t dx = span(key.x, x0, x1);
+    // Columns wrap around the globe: the shorter way counts.
+    dx = std::min({dx, span(key.x + n, x0, x1), span(key.x - n, x0, x1)});
+    const std::int64_t dy = span(key.y, y0, y1);
+    return static_cast<int>(std::min<std::int64_t>(std::max(dx, dy), 1 << 30));
+}
+
+Scheduler::SourceCache& Scheduler::cacheFor(const Source& source) {
+    const std::uint64_t hash = source.contentHash();
+    if (auto it = caches_.find(hash); it != caches_.end()) {
+        return it->second;
+    }
+    std::vector<std::uint64_t> inputs;
+    for (const Source* input : source.inputs()) {
+        if (input != nullptr) {
+            cacheFor(*input);
+            inputs.push_back(input->contentHash());
+        }
+    }
+    SourceCache& cache = caches_[hash];  // inserted after the inputs: no rehash below
+    cache.statistics.name = source.name();
+    cache.inputs = std::move(inputs);
+    cache.generation = ++sequence_;
+    return cache;
+}
+
+Result<TilePointer> Scheduler::tile(const Source& source, const TileKey& key) {
+    SYLVA_CHECK_MESSAGE(key.valid(), "Scheduler::tile: invalid tile key");
+    const TaskId id{source.contentHash(), key};
+    std::unique_lock lock(mutex_);
+    while (true) {
+        SourceCache& cache = cacheFor(source);
+        if (auto hit = cache.tiles.find(key); hit != cache.tiles.end()) {
+            ++cache.statistics.hits;
+            hit->second.lastUse = ++useClock_;
+            return hit->second.tile;
+        }
+        if (auto failed = cache.failures.find(key); failed != cache.failures.end()) {
+            return failed->second;
+        }
+        auto task = tasks_.find(id);
+        if (task != tasks_.end() && task->second.state == TaskState::Running) {
+            // Another thread produces it: wait (the graph is acyclic, so that thread
+            // never waits for us).
+            const auto start = Clock::now();
+            progress_.wait(lock, [&] {
+                auto it = tasks_.find(id);
+                return it == tasks_.end() || it->second.state != TaskState::Running;
+            });
+            nestedSeconds += std::chrono::duration<double>(Clock::now() - start).count();
+            continue;  // cached, failed, or evicted/invalidated meanwhile: look again
+        }
+        if (task != tasks_.end()) {
+            removeQueuedLocked(id);  // take the queued task over; a worker skips it
+        } else {
+            task = tasks_.emplace(id, Task{&source, 0, ++sequence_, TaskState::Running, 0}).first;
+        }
+        task->second.state = TaskState::Running;
+        task->second.source = &source;
+        return run(lock, id, source);
+    }
+}
+
+Result<TilePointer> Scheduler::run(std::unique_lock<std::mutex>& lock, const TaskId& id,
+                                   const Source& source) {
+    const std::uint64_t generation = cacheFor(source).generation;
+    tasks_.at(id).generation = generation;
+    lock.unlock();
+
+    const double outerNested = nestedSeconds;
+    nestedSeconds = 0.0;
+    const auto start = Clock::now();
+    Result<TilePointer> produced = source.produce(id.key, *this);
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    const double own = std::max(0.0, elapsed - nestedSeconds);
+    nestedSeconds = outerNested + elapsed;
+    if (produced) {
+        SYLVA_CHECK(produced.value() != nullptr);
+        SYLVA_CHECK(produced.value()->key() == id.key);
+    } else {
+        produced = Error{"source '" + source.name() + "', tile " + id.key.toString() + ": " +
+                         produced.error().message};
+    }
+
+    lock.lock();
+    tasks_.erase(id);
+    bool report = false;
+    auto cache = caches_.find(id.hash);
+    // A task of an invalidated (or dropped) hash may have read stale inputs: discard.
+    if (cache != caches_.end() && cache->second.generation == generation) {
+        ++cache->second.statistics.misses;
+        cache->second.statistics.produceSeconds += own;
+        if (produced) {
+            insertLocked(id, produced.value());
+        } else if (cache->second.failures.emplace(id.key, produced.error()).second) {
+            ++cache->second.statistics.failures;
+            report = true;
+        }
+    }
+    if (report && options_.failureSink) {
+        // Counted until the sink returns, so waitIdle() also waits for the report.
+        ++reportsInFlight_;
+        lock.unlock();
+        options_.failureSink(produced.error());
+        lock.lock();
+        --reportsInFlight_;
+    }
+    progress_.notify_all();
+    return produced;
+}
+
+void Scheduler::insertLocked(const TaskId& id, TilePointer tile) {
+    SourceCache& cache = caches_.at(id.hash);
+    const std::size_t bytes = tile->bytes();
+    auto [it, inserted] = cache.tiles.try_emplace(id.key);
+    if (!inserted) {
+        cache.statistics.bytes -= it->second.tile->bytes();
+        cachedBytes_ -= it->second.tile->bytes();
+        --cache.statistics.tiles;
+    }
+    it->second = CachedTile{std::move(tile), ++useClock_};
+    cache.statistics.bytes += bytes;
+    ++cache.statistics.tiles;
+    cachedBytes_ += bytes;
+    if (cachedBytes_ > options_.budgetBytes) {
+        pruneLocked();
+    }
+    peakBytes_ = std::max(peakBytes_, cachedBytes_);
+}
+
+void Scheduler::pruneLocked() {
+    // Seed 001 Fig. 4.3a: keep the tiles of the current quad and the ring adjacent to
+    // it; evict the farthest first, least recently used among equally far ones.
+    struct Candidate {
+        int distance;
+        std::uint64_t lastUse;
+        std::uint64_t hash;
+        TileKey key;
+    };
+    std::vector<Candidate> candidates;
+    for (const auto& [hash, cache] : caches_) {
+        for (const auto& [key, cached] : cache.tiles) {
+            const int distance = focus_ ? focusDistance(key, focus_->first, focus_->second) : 0;
+            candidates.push_back({distance, cached.lastUse, hash, key});
+        }
+    }
+    std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+        return a.distance != b.distance ? a.distance > b.distance : a.lastUse < b.lastUse;
+    });
+    for (const Candidate& victim : candidates) {
+        if (cachedBytes_ <= options_.budgetBytes) {
+            break;
+        }
+        SourceCache& cache = caches_.at(victim.hash);
+        auto it = cache.tiles.find(victim.key);
+        const std::size_t bytes = it->second.tile->bytes();
+        cache.tiles.erase(it);
+        cache.statistics.bytes -= bytes;
+        --cache.statistics.tiles;
+        ++cache.statistics.evictions;
+        cachedBytes_ -= bytes;
+    }
+}
+
+TileLookup Scheduler::tryGet(const Source& source, const TileKey& key, int priority) {
+    SYLVA_CHECK_MESSAGE(key.valid(), "Scheduler::tryGet: invalid tile key");
+    std::lock_guard lock(mutex_);
+    SourceCache& cache = cacheFor(source);
+    if (auto hit = cache.tiles.find(key); hit != cache.tiles.end()) {
+        ++cache.statistics.hits;
+        hit->second.lastUse = ++useClock_;
+        return {TileLookup::State::Ready, hit->second.tile, {}};
+    }
+    if (auto failed = cache.failures.find(key); failed != cache.failures.end()) {
+        return {TileLookup::State::Failed, nullptr, failed->second};
+    }
+    auto task = tasks_.find({source.contentHash(), key});
+    if (task == tasks_.end() ||
+        (task->second.state == TaskState::Queued && priority < task->second.priority)) {
+        postLocked({Message::Kind::Request, {TileRequest{&source, key, priority}}});
+    }
+    return {};
+}
+
+void Scheduler::request(const Source& source, const TileKey& key, int priority) {
+    SYLVA_CHECK_MESSAGE(key.valid(), "Scheduler::request: invalid tile key");
+    std::lock_guard lock(mutex_);
+    cacheFor(source);
+    postLocked({Message::Kind::Request, {TileRequest{&source, key, priority}}});
+}
+
+void Scheduler::cancel(const Source& source, const TileKey& key) {
+    std::lock_guard lock(mutex_);
+    postLocked({Message::Kind::Cancel, {TileRequest{&source, key, 0}}});
+}
+
+void Scheduler::setWanted(const std::vector<TileRequest>& wanted) {
+    std::lock_guard lock(mutex_);
+    for (const TileRequest& request : wanted) {
+        SYLVA_CHECK(request.source != nullptr && request.key.valid());
+        cacheFor(*request.source);
+    }
+    postLocked({Message::Kind::SetWanted, wanted});
+}
+
+void Scheduler::cancelAll() {
+    std::lock_guard lock(mutex_);
+    postLocked({Message::Kind::CancelAll, {}});
+}
+
+void Scheduler::postLocked(Message message) {
+    inbox_.push_back(std::move(message));
+    managerWake_.notify_one();
+}
+
+void Scheduler::setFocus(double latitude, double longitude) {
+    std::lock_guard lock(mutex_);
+    focus_ = std::make_pair(latitude, longitude);
+}
+
+void Scheduler::queueLocked(const Source& source, const TileKey& key, int priority) {
+    const TaskId id{source.contentHash(), key};
+    SourceCache& cache = cacheFor(source);
+    if (cache.tiles.count(key) != 0 || cache.failures.count(key) != 0) {
+        return;
+    }
+    auto task = tasks_.find(id);
+    if (task == tasks_.end()) {
+        const std::uint64_t sequence = ++sequence_;
+        tasks_.emplace(id, Task{&source, priority, sequence, TaskState::Queued, 0});
+        queue_.emplace(priority, sequence, id);
+    } else if (task->second.state == TaskState::Queued && priority < task->second.priority) {
+        queue_.erase({task->second.priority, task->second.sequence, id});
+        task->second.priority = priority;
+        queue_.emplace(priority, task->second.sequence, id);
+    }
+}
+
+void Scheduler::removeQueuedLocked(const TaskId& id) {
+    auto task = tasks_.find(id);
+    if (task != tasks_.end() && task->second.state == TaskState::Queued) {
+        queue_.erase({task->second.priority, task->second.sequence, id});
+    }
+}
+
+void Scheduler::managerLoop() {
+    std::unique_lock lock(mutex_);
+    while (true) {
+        managerWake_.wait(lock, [&] {
+            return stopping_ || !inbox_.empty() ||
+                   (static_cast<std::size_t>(idleWorkers_) > dispatched_.size() && !queue_.empty());
+        });
+        if (stopping_) {
+            return;
+        }
+        while (!inbox_.empty()) {
+            Message message = std::move(inbox_.front());
+            inbox_.pop_front();
+            const auto cancelQueued = [&](const TaskId& id) {
+                auto task = tasks_.find(id);
+                if (task != tasks_.end() && task->second.state != TaskState::Running) {
+                    removeQueuedLocked(id);
+                    tasks_.erase(task);  // a dispatched one is skipped by its worker
+                }
+            };
+            switch (message.kind) {
+                case Message::Kind::Request:
+                    queueLocked(*message.requests[0].source, message.requests[0].key,
+                                message.requests[0].priority);
+                    break;
+                case Message::Kind::Cancel:
+                    cancelQueued(
+                        {message.requests[0].source->contentHash(), message.requests[0].key});
+                    break;
+                case Message::Kind::SetWanted:
+                case Message::Kind::CancelAll: {
+                    std::unordered_set<TaskId, TaskIdHash> wanted;
+                    for (const TileRequest& request : message.requests) {
+                        wanted.insert({request.source->contentHash(), request.key});
+                    }
+                    std::vector<TaskId> stale;
+                    for (const auto& [id, task] : tasks_) {
+                        if (task.state != TaskState::Running && wanted.count(id) == 0) {
+                            stale.push_back(id);
+                        }
+                    }
+                    for (const TaskId& id : stale) {
+                        cancelQueued(id);
+                    }
+                    for (const TileRequest& request : message.requests) {
+                        queueLocked(*request.source, request.key, request.priority);
+                    }
+                    break;
+                }
+            }
+        }
+        // Hand the most urgent tasks to idle workers, one each, so later requests and
+        // cancellations still reorder everything not yet started.
+        while (static_cast<std::size_t>(idleWorkers_) > dispatched_.size() && !queue_.empty()) {
+            const TaskId id = std::get<2>(*queue_.begin());
+            queue_.erase(queue_.begin());
+            tasks_.at(id).state = TaskState::Dispatched;
+            dispatched_.push_back(id);
+            workerWake_.notify_one();
+        }
+        progress_.notify_all();  // waitIdle() may be waiting for the inbox to drain
+    }
+}
+
+void Scheduler::workerLoop() {
+    std::unique_lock lock(mutex_);
+    ++idleWorkers_;
+    managerWake_.notify_one();
+    while (true) {
+        workerWake_.wait(lock, [&] { return stopping_ || !dispatched_.empty(); });
+        if (stopping_) {
+            return;
+        }
+        const TaskId id = dispatched_.front();
+        dispatched_.pop_front();
+        auto task = tasks_.find(id);
+        if (task == tasks_.end() || task->second.state != TaskState::Dispatched) {
+            managerWake_.notify_one();  // cancelled or taken over: the slot is free again
+            continue;
+        }
+        task->second.state = TaskState::Running;
+        const Source* source = task->second.source;
+        --idleWorkers_;
+        (void)run(lock, id, *source);
+        ++idleWorkers_;
+        managerWake_.notify_one();
+    }
+}
+
+std::vector<std::uint64_t> Scheduler::invalidate(std::uint64_t contentHash) {
+    std::lock_guard lock(mutex_);
+    // The hash and everything downstream of it (hashes include input hashes, so the
+    // dependents' tiles were made from the stale ones).
+    std::vector<std::uint64_t> dropped{contentHash};
+    for (bool grew = true; grew;) {
+        grew = false;
+        for (const auto& [hash, cache] : caches_) {
+            if (std::find(dropped.begin(), dropped.end(), hash) != dropped.end()) {
+                continue;
+            }
+            for (std::uint64_t input : cache.inputs) {
+                if (std::find(dropped.begin(), dropped.end(), input) != dropped.end()) {
+                    dropped.push_back(hash);
+                    grew = true;
+                    break;
+                }
+            }
+        }
+    }
+    for (std::uint64_t hash : dropped) {
+        dropHashLocked(hash);
+        if (auto cache = caches_.find(hash); cache != caches_.end()) {
+            cache->second.generation = ++sequence_;  // running tasks of it are discarded
+        }
+    }
+    return dropped;
+}
+
+void Scheduler::dropHashLocked(std::uint64_t hash) {
+    auto cache = caches_.find(hash);
+    if (cache != caches_.end()) {
+        for (const auto& [key, cached] : cache->second.tiles) {
+            cachedBytes_ -= cached.tile->bytes();
+        }
+        cache->second.tiles.clear();
+        cache->second.failures.clear();
+        cache->second.statistics.bytes = 0;
+        cache->second.statistics.tiles = 0;
+    }
+    std::vector<TaskId> queued;
+    for (const auto& [id, task] : tasks_) {
+        if (id.hash == hash && task.state != TaskState::Running) {
+            queued.push_back(id);
+        }
+    }
+    for (const TaskId& id : queued) {
+        removeQueuedLocked(id);
+        tasks_.erase(id);
+    }
+}
+
+void Scheduler::retainOnly(const std::unordered_set<std::uint64_t>& live) {
+    std::unique_lock lock(mutex_);
+    // Requests still in the inbox may name sources about to be destroyed.
+    std::erase_if(inbox_, [&](const Message& message) {
+        return std::any_of(message.requests.begin(), message.requests.end(),
+                           [&](const TileRequest& request) {
+                               return live.count(request.source->contentHash()) == 0;
+                           });
+    });
+    std::vector<std::uint64_t> dead;
+    for (const auto& [hash, cache] : caches_) {
+        if (live.count(hash) == 0) {
+            dead.push_back(hash);
+        }
+    }
+    for (std::uint64_t hash : dead) {
+        dropHashLocked(hash);
+    }
+    progress_.wait(lock, [&] {
+        return std::none_of(tasks_.begin(), tasks_.end(),
+                            [&](const auto& entry) { return live.count(entry.first.hash) == 0; });
+    });
+    for (std::uint64_t hash : dead) {
+        cachedBytes_ -= caches_.at(hash).statistics.bytes;  // tiles a finishing task added
+        caches_.erase(hash);
+    }
+}
+
+void Scheduler::waitIdle() {
+    std::unique_lock lock(mutex_);
+    progress_.wait(lock, [&] { return inbox_.empty() && tasks_.empty() && reportsInFlight_ == 0; });
+}
+
+void Scheduler::waitForProgress(std::chrono::milliseconds timeout) {
+    std::unique_lock lock(mutex_);
+    progress_.wait_for(lock, timeout);
+}
+
+SchedulerStatistics Scheduler::totals() const {
+    std::lock_guard lock(mutex_);
+    SchedulerStatistics total;
+    for (const auto& [hash, cache] : caches_) {
+        const SchedulerStatistics& s = cache.statistics;
+        total.hits += s.hits;
+        total.misses += s.misses;
+        total.bytes += s.bytes;
+        total.tiles += s.tiles;
+        total.evictions += s.evictions;
+        total.failures += s.failures;
+        total.produceSeconds += s.produceSeconds;
+    }
+    return total;
+}
+
+std::vector<SchedulerStatistics> Scheduler::statisticsPerSource() const {
+    std::lock_guard lock(mutex_);
+    std::vector<SchedulerStatistics> result;
+    for (const auto& [hash, cache] : caches_) {
+        result.push_back(cache.statistics);
+    }
+    std::sort(
+        result.begin(), result.end(),
+        [](const SchedulerStatistics& a, const SchedulerStatistics& b) { return a.name < b.name; });
+    return result;
+}
+
+void Scheduler::setBudgetBytes(std::size_t bytes) {
+    std::lock_guard lock(mutex_);
+    options_.budgetBytes = bytes;
+    if (cachedBytes_ > bytes) {
+        pruneLocked();
+    }
+}
+
+std::size_t Scheduler::budgetBytes() const {
+    std::lock_guard lock(mutex_);
+    return options_.budgetBytes;
+}
+
+std::size_t Scheduler::peakCachedBytes() const {
+    std::lock_guard lock(mutex_);
+    return peakBytes_;
+}
+
+std::size_t Scheduler::queuedTasks() const {
+    std::lock_guard lock(mutex_);
+    return queue_.size();
+}
+
+}  // namespace sylva

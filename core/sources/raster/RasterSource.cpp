@@ -1,0 +1,698 @@
+#include "sylva/core/sources/raster/RasterSource.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <system_error>
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <gdal.h>
+#include <ogr_srs_api.h>
+
+#include "sylva/core/base/Hash.h"
+#include "sylva/core/image/ColorSpace.h"
+#include "sylva/core/sources/GdalDatasetPool.h"
+
+namespace sylva {
+
+struct RasterSource::Info {
+    std::string path;
+    int width = 0;
+    int height = 0;
+    std::array<double, 6> geoTransform{};
+    std::array<double, 6> inverseTransform{};
+    std::string wkt;
+    bool geographic = false;
+    bool wrapX = false;  // a geographic file spanning 360 degrees: columns wrap
+    std::vector<int> bands;
+    std::vector<double> bandScale;
+    std::vector<double> bandOffset;
+    bool byteData = false;
+    double unitFactor = 1.0;  // metres per vertical unit
+};
+
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+// Keys cubic convolution kernel, a = -0.5 (Keys 1981; GDAL's "cubic").
+double keys(double t) {
+    t = std::abs(t);
+    if (t < 1.0) {
+        return (1.5 * t - 2.5) * t * t + 1.0;
+    }
+    if (t < 2.0) {
+        return ((-0.5 * t + 2.5) * t - 4.0) * t + 2.0;
+    }
+    return 0.0;
+}
+
+std::optional<double> metresPerUnit(std::string unit) {
+    std::transform(unit.begin(), unit.end(), unit.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    if (unit.empty() || unit == "m" || unit == "metre" || unit == "meter" || unit == "metres" ||
+        unit == "meters") {
+        return 1.0;
+    }
+    if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "international foot") {
+        return 0.3048;
+    }
+    if (unit == "us survey foot" || unit == "ftus" || unit == "us-ft") {
+        return 1200.0 / 3937.0;
+    }
+    if (unit == "km" || unit == "kilometre" || unit == "kilometer") {
+        return 1000.0;
+    }
+    return std::nullopt;
+}
+
+std::string lastGdalError(const char* fallback) {
+    const char* message = CPLGetLastErrorMsg();
+    return (message != nullptr && *message != '\0') ? std::string(message) : std::string(fallback);
+}
+
+// Reads everything produce() needs from the file; errors name the file.
+Result<RasterSource::Info> probe(const RasterParameters& p, RasterKind& kind) {
+    RasterSource::Info info;
+    info.path = p.file.string();
+    std::error_code ec;
+    if (!std::filesystem::exists(p.file, ec)) {
+        return Error{info.path + ": file not found"};
+    }
+    Result<void*> opened = GdalDatasetPool::dataset(info.path);
+    if (!opened) {
+        return opened.error();
+    }
+    GDALDatasetH dataset = opened.value();
+    info.width = GDALGetRasterXSize(dataset);
+    info.height = GDALGetRasterYSize(dataset);
+    const int bandCount = GDALGetRasterCount(dataset);
+    if (bandCount < 1 || info.width < 1 || info.height < 1) {
+        return Error{info.path + ": the file has no raster bands"};
+    }
+    if (p.bounds) {
+        const auto& b = *p.bounds;
+        if (!(b[2] > b[0]) || !(b[3] > b[1])) {
+            return Error{info.path +
+                         ": bounds must be [west, south, east, north] with west < east "
+                         "and south < north"};
+        }
+        info.geoTransform = {b[0] / kDegree,
+                             (b[2] - b[0]) / kDegree / info.width,
+                             0.0,
+                             b[3] / kDegree,
+                             0.0,
+                             -(b[3] - b[1]) / kDegree / info.height};
+        OGRSpatialReferenceH wgs84 = OSRNewSpatialReference(nullptr);
+        OSRImportFromEPSG(wgs84, 4326);
+        char* wkt = nullptr;
+        OSRExportToWkt(wgs84, &wkt);
+        info.wkt = wkt;
+        CPLFree(wkt);
+        OSRDestroySpatialReference(wgs84);
+    } else {
+        if (GDALGetGeoTransform(dataset, info.geoTransform.data()) != CE_None) {
+            return Error{
+                info.path +
+                ": the file is not georeferenced (give bounds = [west, south, east, north])"};
+        }
+        OGRSpatialReferenceH srs = GDALGetSpatialRef(dataset);
+        char* wkt = nullptr;
+        if (srs == nullptr || OSRExportToWkt(srs, &wkt) != OGRERR_NONE || wkt == nullptr ||
+            *wkt == '\0') {
+            CPLFree(wkt);
+            return Error{info.path +
+                         ": the file has no coordinate reference system "
+                         "(give bounds = [west, south, east, north] for lon/lat)"};
+        }
+        info.wkt = wkt;
+        CPLFree(wkt);
+    }
+    if (GDALInvGeoTransform(info.geoTransform.data(), info.inverseTransform.data()) == 0) {
+        return Error{info.path + ": the geotransform is not invertible"};
+    }
+    Result<void*> transform = GdalDatasetPool::fromLonLat(info.wkt);
+    if (!transform) {
+        return Error{info.path + ": " + transform.error().message};
+    }
+    {
+        OGRSpatialReferenceH srs = OSRNewSpatialReference(info.wkt.c_str());
+        info.geographic = srs != nullptr && OSRIsGeographic(srs) != 0;
+        OSRDestroySpatialReference(srs);
+    }
+    info.wrapX = info.geographic && std::abs(info.geoTransform[1] * info.width) >= 359.999 &&
+                 info.geoTransform[2] == 0.0;
+
+    info.bands = p.bands;
+    if (info.bands.empty()) {
+        if (kind == RasterKind::Elevation || (kind == RasterKind::Auto && bandCount == 1)) {
+            info.bands = {1};
+        } else {
+            info.bands = bandCount >= 3 ? std::vector<int>{1, 2, 3} : std::vector<int>{1};
+        }
+    }
+    for (int band : info.bands) {
+        if (band < 1 || band > bandCount) {
+            return Error{info.path + ": band " + std::to_string(band) +
+                         " does not exist (the file has " + std::to_string(bandCount) +
+                         (bandCount == 1 ? " band)" : " bands)")};
+        }
+    }
+    if (kind == RasterKind::Auto) {
+        kind = info.bands.size() == 1 ? RasterKind::Elevation : RasterKind::Image;
+    }
+    if (kind == RasterKind::Elevation && info.bands.size() != 1) {
+        return Error{info.path + ": an elevation raster takes exactly one band"};
+    }
+    if (kind == RasterKind::Image && info.bands.size() > 3) {
+        return Error{info.path + ": an image raster takes one to three bands"};
+    }
+    info.byteData = true;
+    for (int band : info.bands) {
+        GDALRasterBandH h = GDALGetRasterBand(dataset, band);
+        int hasScale = 0, hasOffset = 0;
+        const double scale = GDALGetRasterScale(h, &hasScale);
+        const double offset = GDALGetRasterOffset(h, &hasOffset);
+        info.bandScale.push_back(hasScale ? scale : 1.0);
+        info.bandOffset.push_back(hasOffset ? offset : 0.0);
+        info.byteData = info.byteData && GDALGetRasterDataType(h) == GDT_Byte;
+    }
+    if (kind == RasterKind::Elevation) {
+        const char* unit = GDALGetRasterUnitType(GDALGetRasterBand(dataset, info.bands[0]));
+        std::optional<double> factor = metresPerUnit(unit != nullptr ? unit : "");
+        if (!factor) {
+            return Error{info.path + ": unknown vertical unit '" + std::string(unit) +
+                         "' (expected m, ft or US survey foot)"};
+        }
+        info.unitFactor = *factor;
+    }
+    return info;
+}
+
+// Longitude/latitude bounds (radians) of the file's extent, densified along the edges.
+std::array<double, 4> computeLonLatBounds(const RasterSource::Info& info) {
+    const std::array<double, 4> world{-std::numbers::pi, -std::numbers::pi / 2, std::numbers::pi,
+                                      std::numbers::pi / 2};
+    OGRSpatialReferenceH source = OSRNewSpatialReference(info.wkt.c_str());
+    OGRSpatialReferenceH wgs84 = OSRNewSpatialReference(nullptr);
+    OSRImportFromEPSG(wgs84, 4326);
+    OSRSetAxisMappingStrategy(wgs84, OAMS_TRADITIONAL_GIS_ORDER);
+    OSRSetAxisMappingStrategy(source, OAMS_TRADITIONAL_GIS_ORDER);
+    OGRCoordinateTransformationH toLonLat = OCTNewCoordinateTransformation(source, wgs84);
+    std::array<double, 4> result = world;
+    if (toLonLat != nullptr) {
+        const double* g = info.geoTransform.data();
+        std::vector<double> xs, ys;
+        constexpr int kSteps = 32;
+        for (int i = 0; i <= kSteps; ++i) {
+            for (int j = 0; j <= kSteps; ++j) {
+                if (i != 0 && i != kSteps && j != 0 && j != kSteps) {
+                    continue;
+                }
+                const double px = info.width * double(i) / kSteps,
+                             py = info.height * double(j) / kSteps;
+                xs.push_back(g[0] + px * g[1] + py * g[2]);
+                ys.push_back(g[3] + px * g[4] + py * g[5]);
+            }
+        }
+        std::vector<int> ok(xs.size(), 0);
+        OCTTransformEx(toLonLat, static_cast<int>(xs.size()), xs.data(), ys.data(), nullptr,
+                       ok.data());
+        double west = 1e9, east = -1e9, south = 1e9, north = -1e9;
+        bool any = false, all = true;
+        for (std::size_t i = 0; i < xs.size(); ++i) {
+            if (!ok[i] || !std::isfinite(xs[i]) || !std::isfinite(ys[i])) {
+                all = false;
+                continue;
+            }
+            any = true;
+            west = std::min(west, xs[i]);
+            east = std::max(east, xs[i]);
+            south = std::min(south, ys[i]);
+            north = std::max(north, ys[i]);
+        }
+        OCTDestroyCoordinateTransformation(toLonLat);
+        // Projected files whose edges do not all transform, or which cross the
+        // antimeridian (a span above 180 degrees), are treated as unbounded in longitude.
+        if (any && all) {
+            const double marginLon = 0.01 * (east - west) + 1e-6;
+            const double marginLat = 0.01 * (north - south) + 1e-6;
+            result = {(west - marginLon) * kDegree, std::max(-90.0, south - marginLat) * kDegree,
+                      (east + marginLon) * kDegree, std::min(90.0, north + marginLat) * kDegree};
+            if (east - west > 180.0 && !info.geographic) {
+                result[0] = world[0];
+                result[2] = world[2];
+            }
+        }
+    }
+    OSRDestroySpatialReference(source);
+    OSRDestroySpatialReference(wgs84);
+    return result;
+}
+
+}  // namespace
+
+RasterSource::RasterSource(std::string name, PortType output, int channels,
+                           RasterParameters parameters, std::shared_ptr<const Info> info,
+                           std::optional<Error> openError, bool coverageOnly)
+    : Source(std::move(name), "raster", output, channels),
+      parameters_(std::move(parameters)),
+      info_(std::move(info)),
+      openError_(std::move(openError)),
+      coverageOnly_(coverageOnly) {
+    const RasterParameters& p = parameters_;
+    ContentHash hash;
+    hash.add(p.file.string()).add(static_cast<int>(p.kind)).add(static_cast<int>(p.resampling));
+    for (int band : p.bands) {
+        hash.add(band);
+    }
+    hash.add(p.nodata.has_value()).add(p.nodata.value_or(0.0)).add(p.scale).add(p.offset);
+    hash.add(p.bounds.has_value());
+    for (double b : p.bounds.value_or(std::array<double, 4>{})) {
+        hash.add(b);
+    }
+    hash.add(p.srgb.has_value() ? (*p.srgb ? 1 : 2) : 0).add(p.fill).add(coverageOnly);
+    // The file's size and modification time: an edited file gives new tiles.
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(p.file, ec);
+    hash.add(static_cast<std::uint64_t>(ec ? 0 : size));
+    const auto time = std::filesystem::last_write_time(p.file, ec);
+    hash.add(static_cast<std::int64_t>(ec ? 0 : time.time_since_epoch().count()));
+    setParameterHash(hash.value());
+    if (info_) {
+        lonLatBounds_ = computeLonLatBounds(*info_);
+    }
+}
+
+RasterSource::~RasterSource() = default;
+
+std::unique_ptr<RasterSource> RasterSource::open(std::string name, RasterParameters parameters) {
+    RasterKind kind = parameters.kind;
+    Result<Info> info = probe(parameters, kind);
+    std::optional<Error> error;
+    std::shared_ptr<const Info> shared;
+    if (info) {
+        shared = std::make_shared<const Info>(std::move(info.value()));
+    } else {
+        error = info.error();
+        if (kind == RasterKind::Auto) {
+            kind = parameters.bands.size() == 1 ? RasterKind::Elevation : RasterKind::Image;
+        }
+    }
+    const bool elevation = kind == RasterKind::Elevation;
+    std::unique_ptr<RasterSource> source(
+        new RasterSource(name, elevation ? PortType::Elevation : PortType::Image, elevation ? 1 : 4,
+                         parameters, shared, error, false));
+    if (elevation) {
+        source->coverage_.reset(new RasterSource(name + ".coverage", PortType::Mask, 1, parameters,
+                                                 shared, error, true));
+    }
+    return source;
+}
+
+Result<TilePointer> RasterSource::produce(const TileKey& key, TileProvider& provider) const {
+    if (openError_) {
+        return *openError_;
+    }
+    const Info& info = *info_;
+    const TileFormat& format = provider.format();
+    auto tile = std::make_shared<ImageTile>(key, format.size, format.border, channels());
+    const bool elevation = output() == PortType::Elevation;
+    if (elevation) {
+        std::fill(tile->texels().begin(), tile->texels().end(),
+                  static_cast<float>(parameters_.fill));
+    }
+    // Tiles outside the data: no GDAL work at all.
+    const double margin = 2.0 * tile->texelWidth();
+    if (key.east() + margin < lonLatBounds_[0] || key.west() - margin > lonLatBounds_[2] ||
+        key.north() + margin < lonLatBounds_[1] || key.south() - margin > lonLatBounds_[3]) {
+        return TilePointer(std::move(tile));
+    }
+    Result<void*> opened = GdalDatasetPool::dataset(info.path);
+    if (!opened) {
+        return opened.error();
+    }
+    Result<void*> transformed = GdalDatasetPool::fromLonLat(info.wkt);
+    if (!transformed) {
+        return Error{info.path + ": " + transformed.error().message};
+    }
+    GDALDatasetH dataset = opened.value();
+    auto transform = static_cast<OGRCoordinateTransformationH>(transformed.value());
+
+    // 1. Texel centres -> source pixel coordinates (full resolution).
+    const int stride = tile->stride();
+    const int border = format.border;
+    const std::size_t count = static_cast<std::size_t>(stride) * stride;
+    std::vector<double> px(count), py(count);
+    std::vector<int> ok(count, 0);
+    // Approximate transformer in the manner of GDALApproxTransform: per row, the
+    // end points and the midpoint of a span are transformed exactly; if linear
+    // interpolation misses the midpoint by at most 0.125 source pixels the span is
+    // interpolated, otherwise it is split in two. Exact at every transformed point.
+    const double* geo = info.geoTransform.data();
+    const double tolerance =
+        0.125 * std::min(std::hypot(geo[1], geo[4]), std::hypot(geo[2], geo[5]));
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    std::vector<double> lon(stride);
+    for (int j = 0; j < stride; ++j) {
+        const double latitude = tile->texelLatitude(j - border) / kDegree;
+        for (int i = 0; i < stride; ++i) {
+            double longitude = tile->texelLongitude(i - border) / kDegree;
+            if (info.geographic) {
+                longitude = longitude - 360.0 * std::floor((longitude + 180.0) / 360.0);
+            }
+            lon[i] = longitude;
+        }
+        double* rowX = px.data() + std::size_t(j) * stride;
+        double* rowY = py.data() + std::size_t(j) * stride;
+        int* rowOk = ok.data() + std::size_t(j) * stride;
+        auto exact = [&](int i) {
+            rowX[i] = lon[i];
+            rowY[i] = latitude;
+            OCTTransformEx(transform, 1, &rowX[i], &rowY[i], nullptr, &rowOk[i]);
+            rowOk[i] = rowOk[i] && std::isfinite(rowX[i]) && std::isfinite(rowY[i]);
+        };
+        auto span = [&](auto&& self, int i0, int i1) -> void {
+            if (i1 - i0 <= 1) {
+                return;
+            }
+            const int mid = (i0 + i1) / 2;
+            exact(mid);
+            if (rowOk[i0] && rowOk[i1] && rowOk[mid]) {
+                const double t = double(mid - i0) / (i1 - i0);
+                const double ex = rowX[i0] + (rowX[i1] - rowX[i0]) * t - rowX[mid];
+                const double ey = rowY[i0] + (rowY[i1] - rowY[i0]) * t - rowY[mid];
+                if (std::hypot(ex, ey) <= tolerance) {
+                    for (int i = i0 + 1; i < i1; ++i) {
+                        if (i == mid) {
+                            continue;
+                        }
+                        const double u = double(i - i0) / (i1 - i0);
+                        rowX[i] = rowX[i0] + (rowX[i1] - rowX[i0]) * u;
+                        rowY[i] = rowY[i0] + (rowY[i1] - rowY[i0]) * u;
+                        rowOk[i] = 1;
+                    }
+                    return;
+                }
+            }
+            self(self, i0, mid);
+            self(self, mid, i1);
+        };
+        exact(0);
+        exact(stride - 1);
+        span(span, 0, stride - 1);
+    }
+    CPLPopErrorHandler();
+    const double* inv = info.inverseTransform.data();
+    double minX = 1e300, maxX = -1e300, minY = 1e300, maxY = -1e300;
+    for (std::size_t n = 0; n < count; ++n) {
+        if (!ok[n] || !std::isfinite(px[n]) || !std::isfinite(py[n])) {
+            ok[n] = 0;
+            continue;
+        }
+        const double x = px[n], y = py[n];
+        px[n] = inv[0] + x * inv[1] + y * inv[2];
+        py[n] = inv[3] + x * inv[4] + y * inv[5];
+        if (info.wrapX) {
+            px[n] -= info.width * std::floor(px[n] / info.width);
+        }
+        minX = std::min(minX, px[n]);
+        maxX = std::max(maxX, px[n]);
+        minY = std::min(minY, py[n]);
+        maxY = std::max(maxY, py[n]);
+    }
+    if (minX > maxX) {
+        return TilePointer(std::move(tile));
+    }
+    // 2. Source pixels per texel, from the centre texel's neighbours.
+    double footprint = 0.0;
+    {
+        const int c = border + format.size / 2;
+        const std::size_t n0 = std::size_t(c) * stride + c, nx = n0 + 1, ny = n0 + stride;
+        if (ok[n0] && ok[nx] && ok[ny]) {
+            double dxx = px[nx] - px[n0];
+            if (info.wrapX && std::abs(dxx) > info.width / 2.0) {
+                dxx -= std::copysign(double(info.width), dxx);
+            }
+            footprint = std::max(std::hypot(dxx, py[nx] - py[n0]),
+                                 std::hypot(px[ny] - px[n0], py[ny] - py[n0]));
+        } else {
+            footprint = std::max(maxX - minX, maxY - minY) / format.size;
+        }
+    }
+    const double f = std::max(footprint, 1.0);
+    // 3. The source window and the buffer it is read into.
+    const double kernelMargin = 2.0 + f;
+    int x0 = static_cast<int>(std::floor(minX - kernelMargin));
+    int x1 = static_cast<int>(std::ceil(maxX + kernelMargin));
+    int y0 = static_cast<int>(std::floor(minY - kernelMargin));
+    int y1 = static_cast<int>(std::ceil(maxY + kernelMargin));
+    if (info.wrapX) {
+        x0 = 0;
+        x1 = info.width;
+    }
+    x0 = std::clamp(x0, 0, info.width);
+    x1 = std::clamp(x1, 0, info.width);
+    y0 = std::clamp(y0, 0, info.height);
+    y1 = std::clamp(y1, 0, info.height);
+    if (x1 <= x0 || y1 <= y0) {
+        return TilePointer(std::move(tile));
+    }
+    const int windowW = x1 - x0, windowH = y1 - y0;
+    const int limit = 4 * stride;
+    const int bufferW = std::clamp(static_cast<int>(std::ceil(windowW / f)), 1, std::max(limit, 1));
+    const int bufferH = std::clamp(static_cast<int>(std::ceil(windowH / f)), 1, std::max(limit, 1));
+    const bool minify = bufferW < windowW || bufferH < windowH;
+    GDALRasterIOExtraArg extra;
+    INIT_RASTERIO_EXTRA_ARG(extra);
+    extra.eResampleAlg = (minify && parameters_.resampling != Resampling::Nearest)
+                             ? GRIORA_Average
+                             : GRIORA_NearestNeighbour;
+    const std::size_t bufferCount = static_cast<std::size_t>(bufferW) * bufferH;
+    const int bandCount = static_cast<int>(info.bands.size());
+    std::vector<std::vector<float>> values(bandCount, std::vector<float>(bufferCount));
+    std::vector<float> mask(bufferCount);
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    CPLErrorReset();
+    CPLErr err = CE_None;
+    for (int b = 0; b < bandCount && err == CE_None; ++b) {
+        GDALRasterBandH band = GDALGetRasterBand(dataset, info.bands[b]);
+        err = GDALRasterIOEx(band, GF_Read, x0, y0, windowW, windowH, values[b].data(), bufferW,
+                             bufferH, GDT_Float32, 0, 0, &extra);
+    }
+    if (err == CE_None) {
+        GDALRasterBandH maskBand = GDALGetMaskBand(GDALGetRasterBand(dataset, info.bands[0]));
+        err = GDALRasterIOEx(maskBand, GF_Read, x0, y0, windowW, windowH, mask.data(), bufferW,
+                             bufferH, GDT_Float32, 0, 0, &extra);
+    }
+    const std::string reason = lastGdalError("read failed");
+    CPLPopErrorHandler();
+    if (err != CE_None) {
+        return Error{info.path + ": cannot read pixels (" + reason + ")"};
+    }
+    // 4. Validity and units, per buffer pixel.
+    const bool image =
+        output() == PortType::Image || (coverageOnly_ && parameters_.kind == RasterKind::Image);
+    const bool srgb = parameters_.srgb.value_or(info.byteData);
+    for (std::size_t n = 0; n < bufferCount; ++n) {
+        float m = std::clamp(mask[n] / 255.0f, 0.0f, 1.0f);
+        for (int b = 0; b < bandCount; ++b) {
+            float& v = values[b][n];
+            if (parameters_.nodata && v == static_cast<float>(*parameters_.nodata)) {
+                m = 0.0f;
+            }
+            if (!std::isfinite(v)) {
+                m = 0.0f;
+                v = 0.0f;
+                continue;
+            }
+            double x = v * info.bandScale[b] + info.bandOffset[b];
+            if (image && info.byteData) {
+                x /= 255.0;
+            }
+            x = x * parameters_.scale + parameters_.offset;
+            if (image && srgb) {
+                x = srgbToLinear(static_cast<float>(std::clamp(x, 0.0, 1.0)));
+            } else if (!image) {
+                x *= info.unitFactor;
+            }
+            v = static_cast<float>(x);
+        }
+        mask[n] = m;
+    }
+    // 5. Resampling per texel. u, v: buffer coordinates with pixel centres at integers.
+    const double sx = double(bufferW) / windowW, sy = double(bufferH) / windowH;
+    auto column = [&](int i) -> int {
+        if (info.wrapX) {
+            return ((i % bufferW) + bufferW) % bufferW;
+        }
+        return i;
+    };
+    auto maskAt = [&](int i, int j) -> float {
+        i = column(i);
+        if (i < 0 || j < 0 || i >= bufferW || j >= bufferH) {
+            return 0.0f;
+        }
+        return mask[std::size_t(j) * bufferW + i];
+    };
+    float result[3];
+    for (int j = 0; j < stride; ++j) {
+        for (int i = 0; i < stride; ++i) {
+            const std::size_t n = std::size_t(j) * stride + i;
+            if (!ok[n]) {
+                continue;
+            }
+            const double u = (px[n] - x0) * sx - 0.5, v = (py[n] - y0) * sy - 0.5;
+            const int iu = static_cast<int>(std::floor(u)), iv = static_cast<int>(std::floor(v));
+            const double fu = u - iu, fv = v - iv;
+            double coverage = 0.0;
+            for (int b = 0; b < 3; ++b) {
+                result[b] = 0.0f;
+            }
+            if (parameters_.resampling == Resampling::Nearest) {
+                const int ni = column(static_cast<int>(std::floor(u + 0.5)));
+                const int nj = static_cast<int>(std::floor(v + 0.5));
+                coverage = maskAt(ni, nj);
+                if (coverage > 0.0) {
+                    for (int b = 0; b < bandCount; ++b) {
+                        result[b] = values[b][std::size_t(nj) * bufferW + ni];
+                    }
+                }
+            } else {
+                // Bilinear weights give the coverage (and the value unless cubic applies).
+                double weightSum = 0.0, sums[3] = {0, 0, 0};
+                bool allValid = true;
+                for (int dj = 0; dj < 2; ++dj) {
+                    for (int di = 0; di < 2; ++di) {
+                        const double w = (di ? fu : 1 - fu) * (dj ? fv : 1 - fv);
+                        const float m = maskAt(iu + di, iv + dj);
+                        allValid = allValid && m >= 1.0f;
+                        if (m <= 0.0f || w <= 0.0) {
+                            continue;
+                        }
+                        const std::size_t at = std::size_t(iv + dj) * bufferW + column(iu + di);
+                        weightSum += w * m;
+                        for (int b = 0; b < bandCount; ++b) {
+                            sums[b] += w * m * values[b][at];
+                        }
+                    }
+                }
+                coverage = weightSum;
+                if (weightSum > 1e-9) {
+                    for (int b = 0; b < bandCount; ++b) {
+                        result[b] = static_cast<float>(sums[b] / weightSum);
+                    }
+                }
+                if (parameters_.resampling == Resampling::Cubic && allValid) {
+                    bool cubicValid = true;
+                    double cubic[3] = {0, 0, 0};
+                    for (int dj = -1; dj <= 2 && cubicValid; ++dj) {
+                        const double wy = keys(fv - dj);
+                        for (int di = -1; di <= 2; ++di) {
+                            if (maskAt(iu + di, iv + dj) < 1.0f) {
+                                cubicValid = false;
+                                break;
+                            }
+                            const double w = wy * keys(fu - di);
+                            const std::size_t at = std::size_t(iv + dj) * bufferW + column(iu + di);
+                            for (int b = 0; b < bandCount; ++b) {
+                                cubic[b] += w * values[b][at];
+                            }
+                        }
+                    }
+                    if (cubicValid) {
+                        for (int b = 0; b < bandCount; ++b) {
+                            result[b] = static_cast<float>(cubic[b]);
+                        }
+                    }
+                }
+            }
+            const int ix = i - border, iy = j - border;
+            if (coverageOnly_) {
+                tile->at(ix, iy, 0) = static_cast<float>(coverage);
+            } else if (elevation) {
+                if (coverage > 0.0) {
+                    tile->at(ix, iy, 0) = result[0];
+                }
+            } else if (coverage > 0.0) {
+                const float r = result[0];
+                const float g = bandCount >= 2 ? result[1] : r;
+                const float bl = bandCount >= 3 ? result[2] : (bandCount == 2 ? 0.0f : r);
+                tile->at(ix, iy, 0) = std::max(r, 0.0f);
+                tile->at(ix, iy, 1) = std::max(g, 0.0f);
+                tile->at(ix, iy, 2) = std::max(bl, 0.0f);
+                tile->at(ix, iy, 3) = static_cast<float>(std::clamp(coverage, 0.0, 1.0));
+            }
+        }
+    }
+    return TilePointer(std::move(tile));
+}
+
+Result<std::unique_ptr<Source>> RasterSource::create(const SourceBuildContext& context) {
+    const BlockReader& reader = context.reader;
+    RasterParameters p;
+    const std::string file = reader.string("file");
+    if (file.empty()) {
+        return Error{reader.where("file") + "missing value for 'file'"};
+    }
+    std::filesystem::path path(file);
+    p.file = path.is_absolute() ? path : (context.projectFolder / path).lexically_normal();
+    auto word = [&](std::string_view name) -> std::string {
+        const Value* v = reader.value(name);
+        if (v == nullptr) {
+            return {};
+        }
+        if (const Word* w = v->get<Word>()) {
+            return w->text;
+        }
+        if (const std::string* s = v->get<std::string>()) {
+            return *s;
+        }
+        return {};
+    };
+    const std::string kind = word("kind");
+    p.kind = kind == "elevation" ? RasterKind::Elevation
+             : kind == "image"   ? RasterKind::Image
+                                 : RasterKind::Auto;
+    const std::string resampling = word("resampling");
+    p.resampling = resampling == "nearest" ? Resampling::Nearest
+                   : resampling == "cubic" ? Resampling::Cubic
+                                           : Resampling::Bilinear;
+    if (const Value* bands = reader.value("bands")) {
+        if (const ValueList* list = bands->get<ValueList>()) {
+            for (const Value& item : *list) {
+                const Quantity* q = item.get<Quantity>();
+                if (q == nullptr || q->value < 1 || q->value != std::floor(q->value)) {
+                    return Error{reader.where("bands") + "bands must be band numbers from 1"};
+                }
+                p.bands.push_back(static_cast<int>(q->value));
+            }
+        }
+    }
+    if (const Value* bounds = reader.value("bounds")) {
+        const ValueList* list = bounds->get<ValueList>();
+        if (list == nullptr || list->size() != 4) {
+            return Error{reader.where("bounds") + "bounds must be [west, south, east, north]"};
+        }
+        std::array<double, 4> b{};
+        for (int i = 0; i < 4; ++i) {
+            const Quantity* q = (*list)[i].get<Quantity>();
+            if (q == nullptr) {
+                return Error{reader.where("bounds") + "bounds must be four angles"};
+            }
+            b[i] = q->value;
+        }
+        p.bounds = b;
+    }
+    p.nodata = reader.optionalNumber("nodata");
+    p.scale = reader.optionalNumber("scale").value_or(1.0);
+    p.offset = reader.optionalNumber("offset").value_or(0.0);
+    p.fill = reader.optionalNumber("fill").value_or(0.0);
+    if (reader.value("srgb") != nullptr) {
+        p.srgb = reader.boolean("srgb", true);
+    }
+    return std::unique_ptr<Source>(open(context.block.name, std::move(p)));
+}
+
+}  // namespace sylva

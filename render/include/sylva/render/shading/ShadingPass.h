@@ -1,0 +1,43 @@
+// ShadingPass: turns the G-buffer into the final image (seed 001 ch. 7, reduced to
+// what the foundation needs): sun and sky light on the terrain, water glint, sky and
+// limb glow from a single-scattering atmosphere, aerial perspective (haze), tone
+// mapping, sRGB output. The only code that lights anything.
+#pragma once
+
+#include <memory>
+
+#include <glm/glm.hpp>
+
+#include "sylva/core/base/Result.h"
+#include "sylva/core/scene/Camera.h"
+#include "sylva/render/gl/Framebuffer.h"
+#include "sylva/render/gl/ShaderLibrary.h"
+#include "sylva/render/gl/ShaderProgram.h"
+
+namespace sylva::render {
+
+struct ShadingSettings {
+    glm::dvec3 sunDirection{1, 0, 0};  // unit vector towards the sun, ECEF
+    bool atmosphere = true;
+    double exposure = 1.0;
+};
+
+class ShadingPass {
+public:
+    static Result<std::unique_ptr<ShadingPass>> create(const ShaderLibrary& library);
+    ~ShadingPass();
+
+    // Reads `gbuffer` (attachments 0 albedo, 1 normal, reversed-Z depth) and writes
+    // `target` (attachment 0, RGBA8 sRGB-encoded; attachment 1 if present, a float
+    // format: linear radiance × exposure, before tone mapping). `near` and `projection` as used
+    // to draw the G-buffer.
+    void run(const Framebuffer& gbuffer, const Framebuffer& target, const Camera& camera,
+             const glm::dmat4& projection, double near, const ShadingSettings& settings);
+
+private:
+    ShadingPass() = default;
+    ShaderProgram program_;
+    std::uint32_t emptyVertexArray_ = 0;
+};
+
+}  // namespace sylva::render

@@ -1,0 +1,53 @@
+// ClipmapTexture: the GPU side of one clipmap layer, a 2D texture array with one
+// layer per clipmap level (seed 001 §4.3.1). Uploads exactly the regions the CPU
+// Clipmap reports as changed, packed into one pixel buffer object per update
+// (orphaned and mapped for writing, so the driver can copy asynchronously while the
+// CPU goes on), and counts the bytes it sends. Sampled with GL_REPEAT so the toroidal
+// addressing needs no shader logic.
+//
+// Ownership: move-only RAII over the GL texture; destroy it while its context is
+// current. Needs a current GL 4.5 context for every call.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "sylva/core/base/Result.h"
+#include "sylva/core/terrain/Clipmap.h"
+
+namespace sylva::render {
+
+enum class ClipmapFormat {
+    Height,   // 1 channel, metres -> R32F
+    Color,    // linear RGB(A) floats -> SRGB8_ALPHA8 (filtered in linear space)
+    Normals,  // 3 channels, unit vectors -> RGB16F
+};
+
+class ClipmapTexture {
+public:
+    static Result<ClipmapTexture> create(int size, int levels, ClipmapFormat format);
+
+    ClipmapTexture() = default;
+    ~ClipmapTexture();
+    ClipmapTexture(ClipmapTexture&& other) noexcept;
+    ClipmapTexture& operator=(ClipmapTexture&& other) noexcept;
+    ClipmapTexture(const ClipmapTexture&) = delete;
+    ClipmapTexture& operator=(const ClipmapTexture&) = delete;
+
+    // Copies `regions` of `clipmap` (same size and level count) to the texture.
+    void upload(const Clipmap& clipmap, const std::vector<Clipmap::Region>& regions);
+    void bind(int unit) const;
+
+    std::uint32_t id() const { return texture_; }
+    std::uint64_t uploadedBytes() const { return uploadedBytes_; }
+
+private:
+    std::uint32_t texture_ = 0;
+    int size_ = 0;
+    int levels_ = 0;
+    ClipmapFormat format_ = ClipmapFormat::Height;
+    std::uint64_t uploadedBytes_ = 0;
+    std::uint32_t pixelBuffer_ = 0;
+};
+
+}  // namespace sylva::render

@@ -1,0 +1,113 @@
+// TerrainRenderer: the spherical geometry-clipmap terrain (seed 001 ch. 5). Owns the
+// static ring meshes, the CPU clipmaps of the height, colour and normal layers and
+// their GPU texture arrays. update() brings the clipmaps to the camera (evaluating
+// tiles through a TileProvider); draw() writes the G-buffer (albedo, normal, reversed-Z
+// depth). Lighting happens in the ShadingPass, never here.
+//
+// Precision: positions are computed relative to the camera from float offsets that
+// keep their relative precision (sylva::MapTransform), so 1.7 m eye height is stable
+// anywhere on the globe; depth is reversed-Z with an infinite far plane.
+//
+// Needs a current GL 4.5 context for create(), update() and draw(); destroy it while
+// that context is current.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "sylva/core/base/Result.h"
+#include "sylva/core/scene/Camera.h"
+#include "sylva/core/sources/graph/SourceGraph.h"
+#include "sylva/core/terrain/LevelVisibility.h"
+#include "sylva/core/terrain/TerrainRings.h"
+#include "sylva/core/terrain/Clipmap.h"
+#include "sylva/render/terrain/ClipmapTexture.h"
+#include "sylva/render/gl/ShaderLibrary.h"
+#include "sylva/render/gl/ShaderProgram.h"
+
+namespace sylva::render {
+
+struct TerrainSettings {
+    int clipmapSize = 256;     // texels per clipmap level side (= tile size)
+    int maxLevel = 24;         // finest ring level
+    int columns = 256;         // bearing steps of the ring mesh
+    int ringsPerLevel = 24;    // rings per level
+    double maxTerrainHeight = 9000.0;  // metres, for the horizon safety margin
+};
+
+struct TerrainFrameStatistics {
+    LevelRange levels;           // levels drawn
+    LevelRange wanted;           // levels the view asked for
+    std::string degraded;        // why fewer levels were drawn than wanted (an error); empty if none
+    int waitingLevel = -1;       // the first level not drawn because its tiles are still being produced
+    std::uint64_t triangles = 0;
+    std::uint64_t uploadedBytes = 0;
+    double updateSeconds = 0;  // CPU clipmap update including tile evaluation
+};
+
+class TerrainRenderer {
+public:
+    static Result<std::unique_ptr<TerrainRenderer>> create(const ShaderLibrary& library,
+                                                           const TerrainSettings& settings);
+    ~TerrainRenderer();
+
+    // The ring levels to draw for `camera` seen through `pixels` rows.
+    LevelRange visibleLevels(const Camera& camera, double heightAboveTerrain, int pixels) const;
+
+    // Brings the clipmap levels of `wanted` (and the one coarser, for blending) to
+    // the camera's nadir, coarse to fine, as in seed 001 Algorithm 3 (§4.7): the tiles
+    // of all levels are handed to the provider as the wanted list (priority = level,
+    // so coarse first; stale queued tasks are cancelled), then each level is updated
+    // from ready tiles only. A level is drawn as a ring only when all its layers are
+    // ready; when a finer level's tiles are still pending (statistics().waitingLevel),
+    // fail (a tile error) or the deadline passes, drawing stops at the last ready
+    // level, whose fill disk then covers the nadir, so a missing level never leaves a
+    // hole. The coarsest wanted level (and its blend neighbour) is always waited for.
+    // `waitForAll` (batch rendering) waits for every level, so the image does not
+    // depend on thread timing. Returns the levels to draw (statistics().degraded says
+    // why fewer on error), or the error when not even the coarsest level could be made.
+    Result<LevelRange> update(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
+                              const LevelRange& wanted,
+                              std::optional<std::chrono::steady_clock::time_point> deadline = std::nullopt,
+                              bool waitForAll = true);
+
+    // Draws into the bound G-buffer (attachment 0: albedo, 1: normal; depth cleared
+    // to 0 beforehand). `projection` is reversed-Z.
+    void draw(const Camera& camera, const glm::dmat4& projection, const LevelRange& levels, bool ocean);
+
+    const TerrainFrameStatistics& statistics() const { return statistics_; }
+    const TerrainSettings& settings() const { return settings_; }
+
+private:
+    TerrainRenderer() = default;
+    struct Mesh {
+        std::uint32_t vertexArray = 0;
+        std::uint32_t vertexBuffer = 0;
+        std::uint32_t indexBuffer = 0;
+        std::int32_t indexCount = 0;
+    };
+    static Mesh upload(const TerrainMesh& mesh);
+    static void release(Mesh& mesh);
+
+    TerrainSettings settings_;
+    ShaderProgram program_;
+    Mesh ring_;
+    Mesh fill_;
+    std::unique_ptr<Clipmap> height_;
+    std::unique_ptr<Clipmap> color_;
+    std::unique_ptr<Clipmap> normals_;
+    ClipmapTexture heightTexture_;
+    ClipmapTexture colorTexture_;
+    ClipmapTexture normalTexture_;
+    std::uint64_t sourceHashes_[3] = {0, 0, 0};  // height, normals, colour sources of the clipmaps
+    bool hasColor_ = false;
+    TerrainFrameStatistics statistics_;
+    std::uint64_t uploadedBefore_ = 0;
+};
+
+}  // namespace sylva::render

@@ -1,0 +1,105 @@
+// VegetationRenderer: plants on the terrain (seed 001 ch. 6). Per species it keeps the
+// sequential primitive arrays of the PlantLod in storage buffers (ellipsoids, lines),
+// the source mesh and the billboard-cloud levels as instanced triangle meshes; per frame
+// LodSelector picks each instance's level and draw() issues a few instanced draws per
+// species and level bucket into the G-buffer (albedo + ambient occlusion, view normal,
+// reversed-Z depth), after the terrain so that hidden plants fail the depth test.
+//
+// Instances come either as InstanceBatches handed in (tests, benchmarks) or streamed
+// from `plants` sources by VegetationStream (SceneRenderer does that).
+//
+// Needs a current GL 4.5 context for create(), addSpecies() and draw(); destroy it while
+// that context is current. Errors (a shader that does not compile) come back as Result.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "sylva/core/base/Result.h"
+#include "sylva/core/plantlod/BillboardCloudBuilder.h"
+#include "sylva/core/vegetation/LodSelector.h"
+#include "sylva/core/plantlod/PlantAsset.h"
+#include "sylva/core/scene/Camera.h"
+#include "sylva/render/gl/ShaderLibrary.h"
+#include "sylva/render/gl/ShaderProgram.h"
+
+namespace sylva::render {
+
+struct VegetationMesh;  // one mesh of one material on the GPU (VegetationRenderer.cpp)
+
+struct VegetationSettings {
+    VegetationMethod method = VegetationMethod::Lod;
+    double quality = 1.0;          // > 1: finer levels (the error tolerated is divided by it)
+    double minimumPixels = 1.5;    // plants smaller on screen are left to the terrain texture
+    double maximumDistance = 0.0;  // metres; 0 = only minimumPixels limits
+    double transitionBand = 0.35;  // screen-door fade width, in ln(error)
+    bool closeUpMesh = true;       // hand over from the finest LoD to the source mesh
+    float normalNoise = 0.6f;      // normal perturbation of ellipsoids (§3.4.1)
+};
+
+struct VegetationStatistics {
+    std::size_t consideredInstances = 0;
+    std::size_t visibleInstances = 0;
+    std::size_t drawnInstances = 0;  // entries drawn (handover instances count twice)
+    std::size_t drawCalls = 0;
+    std::size_t ellipsoids = 0;  // primitives issued (prefixes × instances)
+    std::size_t lines = 0;
+    std::size_t quadPassRuns = 0;  // runs whose large ellipsoids needed the quad pass
+    std::size_t meshInstances = 0;
+    std::size_t billboardInstances = 0;
+    double selectSeconds = 0;  // CPU: LodSelector::select
+    double uploadSeconds = 0;  // CPU → GPU instance buffer
+};
+
+class VegetationRenderer {
+public:
+    static Result<std::unique_ptr<VegetationRenderer>> create(const ShaderLibrary& library);
+    ~VegetationRenderer();
+
+    // Uploads one species; returns its index (species indices of batches refer to it).
+    // Assets are kept alive by the renderer.
+    std::uint32_t addSpecies(std::shared_ptr<const PlantAsset> asset,
+                             double transitionBand = VegetationSettings{}.transitionBand);
+    std::size_t speciesCount() const { return species_.size(); }
+    const std::vector<SpeciesLod>& speciesLods() const { return lods_; }
+    // The asset of a species index (for the stream's name → index map).
+    const std::shared_ptr<const PlantAsset>& asset(std::uint32_t species) const;
+
+    // Selects and draws `batches` into the bound G-buffer (depth test GREATER, reversed-Z,
+    // depth writes on). `pixelsHigh`: the image height, for the pixel angle.
+    void draw(const std::vector<const InstanceBatch*>& batches, const Camera& camera,
+              const glm::dmat4& projection, double near, int pixelsWide, int pixelsHigh,
+              const VegetationSettings& settings);
+
+    const VegetationStatistics& statistics() const { return statistics_; }
+    const LodSelection& lastSelection() const { return selection_; }
+
+private:
+    VegetationRenderer() = default;
+    struct Species;
+    // Whether an ellipsoid of the run may need a sprite larger than the driver's largest
+    // point (then the run is drawn a second time, as quads, for those ellipsoids).
+    bool mayExceedPointSize(const DrawRun& run, double pixelAngle, double cornerTangent,
+                            double near) const;
+    void drawMeshes(const std::vector<std::unique_ptr<VegetationMesh>>& meshes, const DrawRun& run,
+                    glm::vec2 interval);
+
+    ShaderProgram ellipsoidProgram_;
+    ShaderProgram lineProgram_;
+    ShaderProgram meshProgram_;
+    std::vector<std::unique_ptr<Species>> species_;
+    std::vector<SpeciesLod> lods_;
+    std::uint32_t ellipsoidBuffer_ = 0, lineBuffer_ = 0;  // all species, concatenated
+    std::uint32_t ellipsoidCount_ = 0, lineCount_ = 0;
+    std::uint32_t instanceBuffer_ = 0;
+    std::size_t instanceCapacity_ = 0;
+    std::uint32_t primitiveArray_ = 0;  // VAO: instance attributes only
+    float maximumPointSize_ = 1.0f;     // pixels: the driver's largest point sprite
+    LodSelection selection_;
+    VegetationStatistics statistics_;
+};
+
+}  // namespace sylva::render

@@ -1,0 +1,211 @@
+#include "sylva/render/scene/SceneRenderer.h"
+
+#include <glad/gl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "sylva/core/sources/plants/PlantModelSource.h"
+#include "sylva/core/sources/plants/PlantsSource.h"
+#include "sylva/core/terrain/ElevationQuery.h"
+
+namespace sylva::render {
+
+Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const ShaderLibrary& library,
+                                                             const TerrainSettings& settings) {
+    std::unique_ptr<SceneRenderer> renderer(new SceneRenderer());
+    Result<std::unique_ptr<TerrainRenderer>> terrain = TerrainRenderer::create(library, settings);
+    if (!terrain) {
+        return terrain.error();
+    }
+    renderer->terrain_ = std::move(terrain.value());
+    Result<std::unique_ptr<VegetationRenderer>> vegetation = VegetationRenderer::create(library);
+    if (!vegetation) {
+        return vegetation.error();
+    }
+    renderer->vegetation_ = std::move(vegetation.value());
+    Result<std::unique_ptr<ShadingPass>> shading = ShadingPass::create(library);
+    if (!shading) {
+        return shading.error();
+    }
+    renderer->shading_ = std::move(shading.value());
+    return renderer;
+}
+
+SceneRenderer::~SceneRenderer() = default;
+
+glm::dmat4 SceneRenderer::projection(double verticalFov, double aspect, double near) {
+    const double f = 1.0 / std::tan(verticalFov / 2);
+    glm::dmat4 p(0.0);
+    p[0][0] = f / aspect;
+    p[1][1] = f;
+    p[2][3] = -1.0;  // w = -z
+    p[3][2] = near;  // z = near, so depth = near / distance after the divide
+    return p;
+}
+
+Status SceneRenderer::ensureTargets(int width, int height, bool linearOutput) {
+    const int outputs = linearOutput ? 2 : 1;
+    if (gbuffer_.id() != 0 && gbuffer_.width() == width && gbuffer_.height() == height &&
+        output_.colorCount() == outputs) {
+        return Status::success();
+    }
+    Result<Framebuffer> gbuffer = Framebuffer::create(width, height, {GL_RGBA16F, GL_RGBA16F}, true);
+    if (!gbuffer) {
+        return gbuffer.error();
+    }
+    // The shading pass writes radiance to location 1; without that attachment GL drops it.
+    Result<Framebuffer> output =
+        Framebuffer::create(width, height,
+                            linearOutput ? std::vector<std::uint32_t>{GL_RGBA8, GL_RGBA32F}
+                                         : std::vector<std::uint32_t>{GL_RGBA8},
+                            false);
+    if (!output) {
+        return output.error();
+    }
+    gbuffer_ = std::move(gbuffer.value());
+    output_ = std::move(output.value());
+    return Status::success();
+}
+
+Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
+                                    const RenderSettings& settings) {
+    if (settings.width < 1 || settings.height < 1 || settings.width > 16384 || settings.height > 16384) {
+        return Error{"image size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
+                     " is outside 1..16384"};
+    }
+    if (Status status = ensureTargets(settings.width, settings.height, settings.linearOutput); !status) {
+        return status.error();
+    }
+    // Height above the terrain at the nadir, from the level that will be drawn there:
+    // estimate with a coarse level first, then refine at the finest visible level.
+    const ElevationQuery query(*layers.elevation, provider);
+    Result<double> ground = query.groundHeight(camera.geodetic.latitude, camera.geodetic.longitude, 12);
+    if (!ground) {
+        return ground.error();
+    }
+    LevelRange levels = terrain_->visibleLevels(camera, std::max(camera.geodetic.height - ground.value(), 0.01),
+                                                settings.height);
+    ground = query.groundHeight(camera.geodetic.latitude, camera.geodetic.longitude, levels.finest);
+    if (!ground) {
+        return ground.error();
+    }
+    double groundHeight = ground.value();
+    if (settings.ocean) {
+        groundHeight = std::max(groundHeight, 0.0);
+    }
+    const double aboveTerrain = camera.geodetic.height - groundHeight;
+    if (aboveTerrain <= 0.0) {
+        char buffer[160];
+        std::snprintf(buffer, sizeof buffer, "the camera is %.2f m below the terrain (ground at %.2f m)",
+                      -aboveTerrain, groundHeight);
+        return Error{buffer};
+    }
+    levels = terrain_->visibleLevels(camera, aboveTerrain, settings.height);
+    statistics_.heightAboveTerrain = aboveTerrain;
+
+    Result<LevelRange> ready = terrain_->update(layers, provider, camera, levels, std::nullopt, settings.waitForTiles);
+    if (!ready) {
+        return ready.error();
+    }
+    levels = ready.value();
+    const auto start = std::chrono::steady_clock::now();
+    const double near = std::clamp(0.3 * aboveTerrain, 0.02, 1.0e4);
+    near_ = near;
+    const glm::dmat4 projection =
+        SceneRenderer::projection(camera.verticalFov, double(settings.width) / settings.height, near);
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    gbuffer_.bind();
+    gbuffer_.clearColor(0, glm::vec4(0.0f));
+    gbuffer_.clearColor(1, glm::vec4(0.0f));
+    gbuffer_.clearDepth(0.0f);  // reversed-Z: 0 is infinitely far
+    const auto terrainStart = std::chrono::steady_clock::now();
+    terrain_->draw(camera, projection, levels, settings.ocean);
+    glFinish();  // only to time the pass; the read-back below waits anyway
+    const auto vegetationStart = std::chrono::steady_clock::now();
+    statistics_.terrainPassSeconds = std::chrono::duration<double>(vegetationStart - terrainStart).count();
+    statistics_.vegetation = {};
+    statistics_.vegetationStream = {};
+    statistics_.vegetationPassSeconds = 0;
+    std::vector<const InstanceBatch*> batches = settings.instanceBatches;
+    if (!layers.plants.empty()) {
+        Result<std::vector<VegetationStreamLayer>> streamLayers = vegetationLayers(layers);
+        if (!streamLayers) {
+            Framebuffer::unbind();
+            glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+            return streamLayers.error();
+        }
+        VegetationStreamSettings stream;
+        stream.pixelAngle = 2.0 * std::tan(camera.verticalFov / 2) / settings.height;
+        stream.minimumPixels = settings.vegetation.minimumPixels;
+        stream.maximumDistance = settings.vegetation.maximumDistance;
+        stream.heightAboveGround = aboveTerrain;
+        stream.wait = settings.waitForTiles;
+        Result<std::vector<const InstanceBatch*>> streamed =
+            vegetationStream_.update(streamLayers.value(), provider, camera, vegetation_->speciesLods(), stream);
+        if (!streamed) {
+            Framebuffer::unbind();
+            glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+            return streamed.error();
+        }
+        batches.insert(batches.end(), streamed.value().begin(), streamed.value().end());
+        statistics_.vegetationStream = vegetationStream_.statistics();
+    }
+    if (!batches.empty()) {
+        vegetation_->draw(batches, camera, projection, near, settings.width, settings.height,
+                          settings.vegetation);
+        glFinish();  // only to time the pass
+        statistics_.vegetation = vegetation_->statistics();
+        statistics_.vegetationPassSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - vegetationStart).count();
+    }
+    ShadingSettings shading;
+    shading.sunDirection = settings.sunDirection;
+    shading.atmosphere = settings.atmosphere;
+    shading.exposure = settings.exposure;
+    shading_->run(gbuffer_, output_, camera, projection, near, shading);
+    Image image;
+    image.width = settings.width;
+    image.height = settings.height;
+    image.pixels = output_.readPixelsRGBA8(0);
+    if (settings.linearOutput) {
+        image.radiance = output_.readPixelsFloat(1, 4);
+    }
+    Framebuffer::unbind();
+    glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+    statistics_.terrain = terrain_->statistics();
+    statistics_.gpuSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return image;
+}
+
+Result<std::vector<VegetationStreamLayer>> SceneRenderer::vegetationLayers(const TerrainLayers& layers) {
+    std::vector<VegetationStreamLayer> out;
+    for (const PlantsSource* plants : layers.plants) {
+        VegetationStreamLayer layer;
+        layer.source = plants;
+        const std::vector<const PlantModelSource*>& models = plants->models();
+        for (std::size_t i = 0; i < plants->speciesNames().size(); ++i) {
+            const PlantModelSource* model = i < models.size() ? models[i] : nullptr;
+            if (model == nullptr) {
+                layer.species.push_back(-1);
+                continue;
+            }
+            auto found = speciesOfModel_.find(model->contentHash());
+            if (found == speciesOfModel_.end()) {
+                Result<std::shared_ptr<const PlantAsset>> asset = model->asset();
+                if (!asset) {
+                    return asset.error();
+                }
+                const std::uint32_t index = vegetation_->addSpecies(asset.value());
+                found = speciesOfModel_.emplace(model->contentHash(), index).first;
+            }
+            layer.species.push_back(int(found->second));
+        }
+        out.push_back(std::move(layer));
+    }
+    return out;
+}
+
+}  // namespace sylva::render

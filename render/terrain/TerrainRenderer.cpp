@@ -1,0 +1,313 @@
+#include "sylva/render/terrain/TerrainRenderer.h"
+
+#include <glad/gl.h>
+
+#include <chrono>
+#include <map>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <utility>
+
+#include "sylva/core/geo/Ellipsoid.h"
+
+namespace sylva::render {
+namespace {
+
+constexpr int kMaxClipmapLevels = 32;  // matches MAX_CLIPMAP_LEVELS in clipmap.glsl
+// Pyramid level = ring level - offset: colour and normals get twice the height's
+// resolution (see Clipmap::windowFor).
+constexpr int kHeightLevelOffset = 2;
+constexpr int kDetailLevelOffset = 1;
+
+glm::mat3 toFloat(const glm::dmat3& m) { return glm::mat3(m); }
+
+}  // namespace
+
+Result<std::unique_ptr<TerrainRenderer>> TerrainRenderer::create(const ShaderLibrary& library,
+                                                                 const TerrainSettings& settings) {
+    if (settings.maxLevel < 2 || settings.maxLevel >= kMaxClipmapLevels) {
+        return Error{"terrain: max_level must be within 2.." + std::to_string(kMaxClipmapLevels - 1)};
+    }
+    std::unique_ptr<TerrainRenderer> renderer(new TerrainRenderer());
+    renderer->settings_ = settings;
+    Result<ShaderProgram> program = ShaderProgram::create(
+        library, {{GL_VERTEX_SHADER, "terrain/terrain.vert"}, {GL_FRAGMENT_SHADER, "terrain/terrain.frag"}});
+    if (!program) {
+        return program.error();
+    }
+    renderer->program_ = std::move(program.value());
+
+    const TerrainRings rings(settings.columns, settings.ringsPerLevel);
+    renderer->ring_ = upload(rings.ringMesh());
+    renderer->fill_ = upload(rings.fillMesh());
+
+    const int levels = settings.maxLevel + 1;
+    renderer->height_ = std::make_unique<Clipmap>(levels, settings.clipmapSize, 1);
+    renderer->color_ = std::make_unique<Clipmap>(levels, settings.clipmapSize, 4);
+    renderer->normals_ = std::make_unique<Clipmap>(levels, settings.clipmapSize, 3);
+    Result<ClipmapTexture> height = ClipmapTexture::create(settings.clipmapSize, levels, ClipmapFormat::Height);
+    Result<ClipmapTexture> color = ClipmapTexture::create(settings.clipmapSize, levels, ClipmapFormat::Color);
+    Result<ClipmapTexture> normals = ClipmapTexture::create(settings.clipmapSize, levels, ClipmapFormat::Normals);
+    for (const auto* texture : {&height, &color, &normals}) {
+        if (!*texture) {
+            return texture->error();
+        }
+    }
+    renderer->heightTexture_ = std::move(height.value());
+    renderer->colorTexture_ = std::move(color.value());
+    renderer->normalTexture_ = std::move(normals.value());
+    return renderer;
+}
+
+TerrainRenderer::~TerrainRenderer() {
+    release(ring_);
+    release(fill_);
+}
+
+TerrainRenderer::Mesh TerrainRenderer::upload(const TerrainMesh& mesh) {
+    Mesh result;
+    glCreateVertexArrays(1, &result.vertexArray);
+    glCreateBuffers(1, &result.vertexBuffer);
+    glCreateBuffers(1, &result.indexBuffer);
+    glNamedBufferStorage(result.vertexBuffer, GLsizeiptr(mesh.vertices.size() * sizeof(TerrainVertex)),
+                         mesh.vertices.data(), 0);
+    glNamedBufferStorage(result.indexBuffer, GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
+                         mesh.indices.data(), 0);
+    glVertexArrayVertexBuffer(result.vertexArray, 0, result.vertexBuffer, 0, sizeof(TerrainVertex));
+    glVertexArrayElementBuffer(result.vertexArray, result.indexBuffer);
+    glEnableVertexArrayAttrib(result.vertexArray, 0);
+    glVertexArrayAttribFormat(result.vertexArray, 0, 4, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(result.vertexArray, 0, 0);
+    glEnableVertexArrayAttrib(result.vertexArray, 1);
+    glVertexArrayAttribFormat(result.vertexArray, 1, 1, GL_FLOAT, GL_FALSE, offsetof(TerrainVertex, seam));
+    glVertexArrayAttribBinding(result.vertexArray, 1, 0);
+    result.indexCount = static_cast<std::int32_t>(mesh.indices.size());
+    return result;
+}
+
+void TerrainRenderer::release(Mesh& mesh) {
+    if (mesh.vertexArray != 0) {
+        glDeleteVertexArrays(1, &mesh.vertexArray);
+        glDeleteBuffers(1, &mesh.vertexBuffer);
+        glDeleteBuffers(1, &mesh.indexBuffer);
+        mesh = Mesh{};
+    }
+}
+
+LevelRange TerrainRenderer::visibleLevels(const Camera& camera, double heightAboveTerrain, int pixels) const {
+    return LevelVisibility::visibleLevels(camera.geodetic.height, heightAboveTerrain, settings_.maxTerrainHeight,
+                                          camera.verticalFov, pixels, settings_.maxLevel);
+}
+
+Result<LevelRange> TerrainRenderer::update(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
+                                           const LevelRange& wanted,
+                                           std::optional<std::chrono::steady_clock::time_point> deadline,
+                                           bool waitForAll) {
+    SYLVA_CHECK(layers.elevation != nullptr && layers.normals != nullptr);
+    const auto start = std::chrono::steady_clock::now();
+    const double latitude = camera.geodetic.latitude;
+    const double longitude = camera.geodetic.longitude;
+    const int size = settings_.clipmapSize;
+    hasColor_ = layers.color != nullptr;
+    // A different source (another scenario, an edited parameter) means different
+    // texels under the same windows: drop that layer's levels.
+    const std::uint64_t hashes[3] = {layers.elevation->contentHash(), layers.normals->contentHash(),
+                                     hasColor_ ? layers.color->contentHash() : 0};
+    Clipmap* clipmaps[3] = {height_.get(), normals_.get(), color_.get()};
+    for (int layer = 0; layer < 3; ++layer) {
+        if (hashes[layer] != sourceHashes_[layer]) {
+            for (int level = 0; level < clipmaps[layer]->levelCount(); ++level) {
+                clipmaps[layer]->invalidate(level);
+            }
+            sourceHashes_[layer] = hashes[layer];
+        }
+    }
+    struct Layer {
+        Clipmap* clipmap;
+        ClipmapTexture* texture;
+        const Source* source;
+        int levelOffset;
+    };
+    const Layer layerList[] = {{height_.get(), &heightTexture_, layers.elevation, kHeightLevelOffset},
+                               {normals_.get(), &normalTexture_, layers.normals, kDetailLevelOffset},
+                               {color_.get(), &colorTexture_, layers.color, kDetailLevelOffset}};
+    const int firstLevel = std::max(0, wanted.coarsest - 1);  // the coarser neighbour blends
+
+    // Seed 001 Algorithm 3: gather the tiles of every level (coarse before fine by
+    // priority), hand the list over (queued tasks of the previous focus are cancelled,
+    // running ones finish and stay cached), then bring levels up coarse to fine.
+    struct LevelTiles {
+        std::vector<std::pair<const Layer*, ClipmapWindow>> windows;
+    };
+    std::vector<LevelTiles> levelTiles(std::size_t(wanted.finest - firstLevel + 1));
+    std::vector<TileRequest> requests;
+    for (int level = firstLevel; level <= wanted.finest; ++level) {
+        for (const Layer& layer : layerList) {
+            if (layer.source == nullptr) {
+                continue;
+            }
+            const ClipmapWindow window = Clipmap::windowFor(level, latitude, longitude, size, layer.levelOffset);
+            if (layer.clipmap->valid(level) && layer.clipmap->window(level) == window) {
+                continue;
+            }
+            levelTiles[std::size_t(level - firstLevel)].windows.emplace_back(&layer, window);
+            for (const TileKey& key : Clipmap::tilesFor(window, size)) {
+                requests.push_back({layer.source, key, level});
+            }
+        }
+    }
+    provider.setFocus(latitude, longitude);
+    provider.setWanted(requests);
+
+    statistics_.wanted = wanted;
+    statistics_.degraded.clear();
+    statistics_.waitingLevel = -1;
+    LevelRange drawn = wanted;
+    // Tiles already obtained in this call, so a level waited for keeps them even if the
+    // cache prunes meanwhile.
+    std::map<std::pair<std::uint64_t, TileKey>, TilePointer> ready;
+    for (int level = firstLevel; level <= wanted.finest; ++level) {
+        const LevelTiles& needed = levelTiles[std::size_t(level - firstLevel)];
+        // Every tile of the level's windows: ready, pending (not yet produced) or failed.
+        Status status;
+        bool pending = false;
+        while (true) {
+            pending = false;
+            for (const auto& [layer, window] : needed.windows) {
+                for (const TileKey& key : Clipmap::tilesFor(window, size)) {
+                    const auto id = std::make_pair(layer->source->contentHash(), key);
+                    if (ready.count(id) != 0) {
+                        continue;
+                    }
+                    TileLookup lookup = provider.tryGet(*layer->source, key, level);
+                    if (lookup.state == TileLookup::State::Ready) {
+                        ready.emplace(id, std::move(lookup.tile));
+                    } else if (lookup.state == TileLookup::State::Failed) {
+                        status = lookup.error;
+                    } else {
+                        pending = true;
+                    }
+                }
+            }
+            // The coarsest levels are always waited for (nothing else covers the
+            // globe); batch rendering waits for every level.
+            if (!status || !pending || (!waitForAll && level > wanted.coarsest)) {
+                break;
+            }
+            provider.waitForProgress(std::chrono::milliseconds(20));
+        }
+        if (status && !pending) {
+            for (const auto& [layer, window] : needed.windows) {
+                const Clipmap::Fetch fetch = [&](const TileKey& key) -> Result<TilePointer> {
+                    auto it = ready.find({layer->source->contentHash(), key});
+                    SYLVA_CHECK_MESSAGE(it != ready.end(), "clipmap update outside Clipmap::tilesFor");
+                    return it->second;
+                };
+                status = layer->clipmap->update(level, window, fetch);
+                layer->texture->upload(*layer->clipmap, layer->clipmap->takeDirtyRegions());
+                if (!status) {
+                    break;
+                }
+            }
+        }
+        if (!status) {
+            if (level <= wanted.coarsest) {
+                return status.error();
+            }
+            drawn.finest = level - 1;
+            statistics_.degraded = "level " + std::to_string(level) + " failed, drawing up to level " +
+                                   std::to_string(drawn.finest) + ": " + status.error().message;
+            break;
+        }
+        if (pending) {
+            // Not an error: the workers are still producing; a later frame draws it.
+            drawn.finest = level - 1;
+            statistics_.waitingLevel = level;
+            break;
+        }
+        if (deadline && level >= wanted.coarsest && level < wanted.finest &&
+            std::chrono::steady_clock::now() > *deadline) {
+            drawn.finest = level;
+            statistics_.degraded = "time limit reached after level " + std::to_string(level);
+            break;
+        }
+    }
+    const std::uint64_t uploaded =
+        heightTexture_.uploadedBytes() + normalTexture_.uploadedBytes() + colorTexture_.uploadedBytes();
+    statistics_.uploadedBytes = uploaded - uploadedBefore_;
+    uploadedBefore_ = uploaded;
+    statistics_.updateSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return drawn;
+}
+
+void TerrainRenderer::draw(const Camera& camera, const glm::dmat4& projection, const LevelRange& levels,
+                           bool ocean) {
+    const double latitude = camera.geodetic.latitude;
+    const double longitude = camera.geodetic.longitude;
+    const int size = settings_.clipmapSize;
+    const glm::dmat3 view = camera.viewRotation();
+    // The viewer's meridian frame is ECEF rotated by -longitude about z.
+    const double c = std::cos(longitude), s = std::sin(longitude);
+    const glm::dmat3 meridianToEcef(glm::dvec3(c, s, 0), glm::dvec3(-s, c, 0), glm::dvec3(0, 0, 1));
+    const glm::dvec3 ground = Ellipsoid::toEcef({latitude, longitude, 0.0});
+
+    program_.use();
+    program_.setVec3("uViewerLatitude", glm::vec3(float(std::sin(latitude)), float(std::cos(latitude)), float(latitude)));
+    program_.setFloat("uBearingSign", latitude >= 0 ? 1.0f : -1.0f);
+    program_.setMat3("uMeridianToView", toFloat(view * meridianToEcef));
+    program_.setMat3("uEcefToView", toFloat(view));
+    program_.setVec3("uGroundToCamera", glm::vec3(view * (ground - camera.position)));
+    program_.setMat4("uProjection", glm::mat4(projection));
+    program_.setFloat("uClipmapSize", float(size));
+    program_.setInt("uOcean", ocean ? 1 : 0);
+    program_.setInt("uHasColor", hasColor_ ? 1 : 0);
+    program_.setInt("uHeight", 0);
+    program_.setInt("uColor", 1);
+    program_.setInt("uNormals", 2);
+    for (const auto& [clipmap, name] : {std::pair{height_.get(), "uHeightLevels[0]"},
+                                        std::pair{normals_.get(), "uDetailLevels[0]"}}) {
+        std::vector<glm::vec4> levelUniforms(kMaxClipmapLevels, glm::vec4(0.0f));
+        for (int level = 0; level <= settings_.maxLevel; ++level) {
+            if (!clipmap->valid(level)) {
+                continue;
+            }
+            const ClipmapWindow& window = clipmap->window(level);
+            const double texelWidth = window.texelWidth(size);
+            const double texelHeight = window.texelHeight(size);
+            // The viewer's continuous texel coordinate, reduced modulo the size in
+            // double so the float the GPU gets is small and exact enough.
+            double x = (longitude + std::numbers::pi) / texelWidth;
+            double y = (std::numbers::pi / 2 - latitude) / texelHeight;
+            x -= std::floor(x / size) * size;
+            y -= std::floor(y / size) * size;
+            levelUniforms[level] = glm::vec4(float(1.0 / texelWidth), float(1.0 / texelHeight), float(x), float(y));
+        }
+        glProgramUniform4fv(program_.id(), program_.uniformLocation(name), kMaxClipmapLevels, &levelUniforms[0].x);
+    }
+    heightTexture_.bind(0);
+    colorTexture_.bind(1);
+    normalTexture_.bind(2);
+
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);  // reversed-Z
+    glDisable(GL_CULL_FACE);
+    statistics_.levels = levels;
+    statistics_.triangles = 0;
+    for (int level = levels.coarsest; level <= levels.finest; ++level) {
+        program_.setInt("uLevel", level);
+        program_.setFloat("uLevelScale", float(std::ldexp(1.0, -level)));
+        glBindVertexArray(ring_.vertexArray);
+        glDrawElements(GL_TRIANGLES, ring_.indexCount, GL_UNSIGNED_INT, nullptr);
+        statistics_.triangles += std::uint64_t(ring_.indexCount / 3);
+    }
+    // The fill disk closes the finest level down to the nadir; it never blends.
+    program_.setInt("uLevel", levels.finest);
+    program_.setFloat("uLevelScale", float(std::ldexp(1.0, -levels.finest)));
+    glBindVertexArray(fill_.vertexArray);
+    glDrawElements(GL_TRIANGLES, fill_.indexCount, GL_UNSIGNED_INT, nullptr);
+    statistics_.triangles += std::uint64_t(fill_.indexCount / 3);
+    glBindVertexArray(0);
+}
+
+}  // namespace sylva::render

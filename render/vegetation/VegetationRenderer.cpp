@@ -1,0 +1,457 @@
+#include "sylva/render/vegetation/VegetationRenderer.h"
+
+#include <glad/gl.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <numbers>
+
+#include "sylva/core/base/Check.h"
+
+namespace sylva::render {
+
+namespace {
+
+// std430 mirrors of the shader structs (shaders/vegetation/ellipsoid.vert, line.vert).
+struct GpuEllipsoid {
+    glm::vec4 centerNoise;
+    glm::vec4 axis0;
+    glm::vec4 axis1;
+    glm::vec4 axis2;
+    glm::vec4 color;
+};
+struct GpuLine {
+    glm::vec4 startRadius;
+    glm::vec4 endRadius;
+    glm::vec4 color;
+    glm::vec4 errors;
+};
+static_assert(sizeof(GpuEllipsoid) == 80 && sizeof(GpuLine) == 64);
+static_assert(sizeof(DrawInstance) == 80);
+
+// Billboard levels are chosen when their distance bound covers this many pixels.
+constexpr double kBillboardPixels = 1.0;
+
+// Binds the five DrawInstance attributes at `firstLocation` to binding point `binding`.
+void setInstanceAttributes(GLuint vertexArray, GLuint firstLocation, GLuint binding) {
+    for (GLuint i = 0; i < 5; ++i) {
+        glEnableVertexArrayAttrib(vertexArray, firstLocation + i);
+        glVertexArrayAttribFormat(vertexArray, firstLocation + i, 4, GL_FLOAT, GL_FALSE,
+                                  GLuint(i * sizeof(glm::vec4)));
+        glVertexArrayAttribBinding(vertexArray, firstLocation + i, binding);
+    }
+    glVertexArrayBindingDivisor(vertexArray, binding, 1);
+}
+
+}  // namespace
+
+// One mesh of one material, instanced (vertex binding 0: MeshVertex, binding 1: the
+// DrawInstance buffer).
+struct VegetationMesh {
+    GLuint vertexArray = 0, vertexBuffer = 0, indexBuffer = 0, texture = 0;
+    bool ownsTexture = false;  // meshes of one material share the first one's texture
+    GLsizei indexCount = 0;
+    glm::vec4 baseColor{1.0f};
+    float alphaCutoff = -1.0f;
+    VegetationMesh() = default;
+    VegetationMesh(const VegetationMesh&) = delete;
+    VegetationMesh& operator=(const VegetationMesh&) = delete;
+    ~VegetationMesh() {
+        glDeleteVertexArrays(1, &vertexArray);
+        glDeleteBuffers(1, &vertexBuffer);
+        glDeleteBuffers(1, &indexBuffer);
+        if (ownsTexture) {
+            glDeleteTextures(1, &texture);
+        }
+    }
+};
+
+struct VegetationRenderer::Species {
+    std::shared_ptr<const PlantAsset> asset;
+    std::uint32_t firstEllipsoid = 0, firstLine = 0;
+    std::vector<std::unique_ptr<VegetationMesh>> mesh;
+    std::vector<std::vector<std::unique_ptr<VegetationMesh>>> billboardLevels;
+};
+
+namespace {
+
+struct MeshVertex {
+    glm::vec3 position;
+    glm::vec3 normal;
+    glm::vec2 uv;
+};
+
+// One VegetationMesh per PlantMesh with triangles; textures as sRGB with mipmaps.
+std::vector<std::unique_ptr<VegetationMesh>> uploadModel(const PlantModel& model,
+                                                         GLuint instanceBuffer) {
+    std::vector<std::unique_ptr<VegetationMesh>> meshes;
+    std::vector<GLuint> textures(model.materials.size(), 0);
+    for (const PlantMesh& source : model.meshes) {
+        if (source.indices.empty()) {
+            continue;
+        }
+        auto mesh = std::make_unique<VegetationMesh>();
+        std::vector<MeshVertex> vertices(source.positions.size());
+        for (std::size_t i = 0; i < vertices.size(); ++i) {
+            vertices[i].position = source.positions[i];
+            vertices[i].normal = i < source.normals.size() ? source.normals[i] : glm::vec3(0, 0, 1);
+            vertices[i].uv = i < source.uvs.size() ? source.uvs[i] : glm::vec2(0.0f);
+        }
+        glCreateVertexArrays(1, &mesh->vertexArray);
+        glCreateBuffers(1, &mesh->vertexBuffer);
+        glCreateBuffers(1, &mesh->indexBuffer);
+        glNamedBufferStorage(mesh->vertexBuffer, GLsizeiptr(vertices.size() * sizeof(MeshVertex)),
+                             vertices.data(), 0);
+        glNamedBufferStorage(mesh->indexBuffer,
+                             GLsizeiptr(source.indices.size() * sizeof(std::uint32_t)),
+                             source.indices.data(), 0);
+        mesh->indexCount = GLsizei(source.indices.size());
+        const GLuint va = mesh->vertexArray;
+        glVertexArrayVertexBuffer(va, 0, mesh->vertexBuffer, 0, sizeof(MeshVertex));
+        glVertexArrayElementBuffer(va, mesh->indexBuffer);
+        const GLuint offsets[3] = {offsetof(MeshVertex, position), offsetof(MeshVertex, normal),
+                                   offsetof(MeshVertex, uv)};
+        const GLint sizes[3] = {3, 3, 2};
+        for (GLuint a = 0; a < 3; ++a) {
+            glEnableVertexArrayAttrib(va, a);
+            glVertexArrayAttribFormat(va, a, sizes[a], GL_FLOAT, GL_FALSE, offsets[a]);
+            glVertexArrayAttribBinding(va, a, 0);
+        }
+        glVertexArrayVertexBuffer(va, 1, instanceBuffer, 0, sizeof(DrawInstance));
+        setInstanceAttributes(va, 3, 1);
+        if (source.material >= 0 && std::size_t(source.material) < model.materials.size()) {
+            const PlantMaterial& material = model.materials[std::size_t(source.material)];
+            mesh->baseColor = material.baseColor;
+            mesh->alphaCutoff = material.alphaMasked ? material.alphaCutoff : -1.0f;
+            const PlantTexture& texture = material.baseColorTexture;
+            if (texture.width > 0 && texture.height > 0) {
+                GLuint& id = textures[std::size_t(source.material)];
+                if (id == 0) {
+                    const int levels =
+                        1 + int(std::floor(std::log2(std::max(texture.width, texture.height))));
+                    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+                    glTextureStorage2D(id, levels, GL_SRGB8_ALPHA8, texture.width, texture.height);
+                    glTextureSubImage2D(id, 0, 0, 0, texture.width, texture.height, GL_RGBA,
+                                        GL_UNSIGNED_BYTE, texture.rgba.data());
+                    glGenerateTextureMipmap(id);
+                    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+                    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+                    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+                    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+                    mesh->ownsTexture = true;
+                }
+                mesh->texture = id;
+            }
+        } else {
+            mesh->baseColor = glm::vec4(0.35f, 0.3f, 0.25f, 1.0f);
+        }
+        meshes.push_back(std::move(mesh));
+    }
+    return meshes;
+}
+
+// The billboard-cloud levels an asset carries (finest first; empty when not built).
+const std::vector<BillboardLevel>& billboardLevels(const PlantAsset& asset) {
+    return asset.lod.billboards.levels;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<VegetationRenderer>> VegetationRenderer::create(
+    const ShaderLibrary& library) {
+    std::unique_ptr<VegetationRenderer> renderer(new VegetationRenderer());
+    struct Program {
+        ShaderProgram* target;
+        const char* vertex;
+        const char* fragment;
+    };
+    for (const Program& p :
+         {Program{&renderer->ellipsoidProgram_, "vegetation/ellipsoid.vert",
+                  "vegetation/ellipsoid.frag"},
+          Program{&renderer->lineProgram_, "vegetation/line.vert", "vegetation/line.frag"},
+          Program{&renderer->meshProgram_, "vegetation/mesh.vert", "vegetation/mesh.frag"}}) {
+        Result<ShaderProgram> program = ShaderProgram::create(
+            library, {{GL_VERTEX_SHADER, p.vertex}, {GL_FRAGMENT_SHADER, p.fragment}});
+        if (!program) {
+            return program.error();
+        }
+        *p.target = std::move(program.value());
+    }
+    // Ellipsoid sprites up to the driver's largest point size (llvmpipe: 255 pixels);
+    // larger ones are drawn as quads.
+    GLfloat pointSizes[2] = {1.0f, 1.0f};
+    glGetFloatv(GL_POINT_SIZE_RANGE, pointSizes);
+    renderer->maximumPointSize_ = std::max(1.0f, pointSizes[1]);
+    glCreateBuffers(1, &renderer->instanceBuffer_);
+    glCreateVertexArrays(1, &renderer->primitiveArray_);
+    setInstanceAttributes(renderer->primitiveArray_, 0, 0);
+    return renderer;
+}
+
+VegetationRenderer::~VegetationRenderer() {
+    species_.clear();
+    glDeleteBuffers(1, &ellipsoidBuffer_);
+    glDeleteBuffers(1, &lineBuffer_);
+    glDeleteBuffers(1, &instanceBuffer_);
+    glDeleteVertexArrays(1, &primitiveArray_);
+}
+
+const std::shared_ptr<const PlantAsset>& VegetationRenderer::asset(std::uint32_t species) const {
+    SYLVA_CHECK(species < species_.size());
+    return species_[species]->asset;
+}
+
+std::uint32_t VegetationRenderer::addSpecies(std::shared_ptr<const PlantAsset> asset,
+                                             double transitionBand) {
+    SYLVA_CHECK(asset != nullptr);
+    auto species = std::make_unique<Species>();
+    species->asset = asset;
+    species->firstEllipsoid = ellipsoidCount_;
+    species->firstLine = lineCount_;
+    const PlantLod& lod = asset->lod;
+
+    // Append the primitives to the shared storage buffers (re-created with the new size;
+    // species are added once, before drawing).
+    std::vector<GpuEllipsoid> ellipsoids(ellipsoidCount_ + lod.ellipsoids.size());
+    std::vector<GpuLine> lines(lineCount_ + lod.lines.size());
+    if (ellipsoidCount_ > 0) {
+        glGetNamedBufferSubData(ellipsoidBuffer_, 0,
+                                GLsizeiptr(ellipsoidCount_ * sizeof(GpuEllipsoid)),
+                                ellipsoids.data());
+    }
+    if (lineCount_ > 0) {
+        glGetNamedBufferSubData(lineBuffer_, 0, GLsizeiptr(lineCount_ * sizeof(GpuLine)),
+                                lines.data());
+    }
+    for (std::size_t i = 0; i < lod.ellipsoids.size(); ++i) {
+        const LodEllipsoid& e = lod.ellipsoids[i];
+        GpuEllipsoid& g = ellipsoids[ellipsoidCount_ + i];
+        g.centerNoise = glm::vec4(e.center, e.noiseLevel);
+        g.axis0 = glm::vec4(e.axes[0] * e.radii.x, e.alphaThreshold);
+        g.axis1 = glm::vec4(e.axes[1] * e.radii.y, e.ambientOcclusion);
+        g.axis2 = glm::vec4(e.axes[2] * e.radii.z, e.errorMinimum);
+        g.color = glm::vec4(e.color, e.errorMaximum);
+    }
+    for (std::size_t i = 0; i < lod.lines.size(); ++i) {
+        const LodLine& l = lod.lines[i];
+        GpuLine& g = lines[lineCount_ + i];
+        g.startRadius = glm::vec4(l.start, l.startRadius);
+        g.endRadius = glm::vec4(l.end, l.endRadius);
+        g.color = glm::vec4(l.color, l.ambientOcclusion);
+        g.errors = glm::vec4(l.errorMinimum, l.errorMaximum, 0.0f, 0.0f);
+    }
+    ellipsoidCount_ = std::uint32_t(ellipsoids.size());
+    lineCount_ = std::uint32_t(lines.size());
+    glDeleteBuffers(1, &ellipsoidBuffer_);
+    glDeleteBuffers(1, &lineBuffer_);
+    glCreateBuffers(1, &ellipsoidBuffer_);
+    glCreateBuffers(1, &lineBuffer_);
+    // Empty buffers are not bindable as storage: keep at least one element.
+    if (ellipsoids.empty()) {
+        ellipsoids.resize(1);
+    }
+    if (lines.empty()) {
+        lines.resize(1);
+    }
+    glNamedBufferStorage(ellipsoidBuffer_, GLsizeiptr(ellipsoids.size() * sizeof(GpuEllipsoid)),
+                         ellipsoids.data(), 0);
+    glNamedBufferStorage(lineBuffer_, GLsizeiptr(lines.size() * sizeof(GpuLine)), lines.data(), 0);
+
+    species->mesh = uploadModel(asset->model, instanceBuffer_);
+    SpeciesLod description = LodSelector::describe(*asset, transitionBand);
+    for (const BillboardLevel& level : billboardLevels(*asset)) {
+        species->billboardLevels.push_back(
+            uploadModel(BillboardCloudBuilder::levelModel(level, asset->name), instanceBuffer_));
+        description.billboardError.push_back(
+            description.billboardError.empty() ? 0.0f : float(level.epsilon / kBillboardPixels));
+    }
+    lods_.push_back(description);
+    species_.push_back(std::move(species));
+    return std::uint32_t(species_.size() - 1);
+}
+
+void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches,
+                              const Camera& camera, const glm::dmat4& projection, double near,
+                              int pixelsWide, int pixelsHigh, const VegetationSettings& settings) {
+    statistics_ = {};
+    if (species_.empty()) {
+        return;
+    }
+    LodSelectionSettings selection;
+    selection.pixelAngle = 2.0 * std::tan(camera.verticalFov / 2) / std::max(pixelsHigh, 1);
+    selection.quality = settings.quality;
+    selection.minimumPixels = settings.minimumPixels;
+    selection.maximumDistance = settings.maximumDistance;
+    selection.transitionBand = settings.transitionBand;
+    selection.closeUpMesh = settings.closeUpMesh;
+    selection.method = settings.method;
+    selection.near = near;
+    LodSelector::setFrustum(selection, camera.verticalFov,
+                            double(pixelsWide) / std::max(pixelsHigh, 1));
+
+    const auto selectStart = std::chrono::steady_clock::now();
+    LodSelector::select(batches, lods_, camera, selection, selection_);
+    const auto uploadStart = std::chrono::steady_clock::now();
+    statistics_.selectSeconds = std::chrono::duration<double>(uploadStart - selectStart).count();
+    statistics_.consideredInstances = selection_.consideredInstances;
+    statistics_.visibleInstances = selection_.visibleInstances;
+    statistics_.drawnInstances = selection_.instances.size();
+    statistics_.ellipsoids = selection_.drawnEllipsoids;
+    statistics_.lines = selection_.drawnLines;
+    if (selection_.instances.empty()) {
+        return;
+    }
+    const std::size_t bytes = selection_.instances.size() * sizeof(DrawInstance);
+    if (bytes > instanceCapacity_) {
+        instanceCapacity_ = bytes + bytes / 2;
+        glNamedBufferData(instanceBuffer_, GLsizeiptr(instanceCapacity_), nullptr, GL_STREAM_DRAW);
+    } else {
+        glInvalidateBufferData(instanceBuffer_);
+    }
+    glNamedBufferSubData(instanceBuffer_, 0, GLsizeiptr(bytes), selection_.instances.data());
+    statistics_.uploadSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - uploadStart).count();
+
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);  // reversed-Z
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    const glm::mat4 projectionFloat(projection);
+    const float band = float(settings.transitionBand);
+    const bool handover = settings.method == VegetationMethod::Lod && settings.closeUpMesh;
+
+    // Ellipsoids (point sprites, and quads for sprites too large), then lines: instanced
+    // draws per species and bucket.
+    glVertexArrayVertexBuffer(primitiveArray_, 0, instanceBuffer_, 0, sizeof(DrawInstance));
+    glBindVertexArray(primitiveArray_);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    const glm::vec2 viewport{float(pixelsWide), float(pixelsHigh)};
+    // Tangent of the angle between the view axis and a frustum corner.
+    const double cornerTangent =
+        selection.pixelAngle * 0.5 * std::hypot(double(pixelsWide), double(pixelsHigh));
+    for (int pass = 0; pass < 2; ++pass) {
+        ShaderProgram& program = pass == 0 ? ellipsoidProgram_ : lineProgram_;
+        program.use();
+        program.setMat4("uProjection", projectionFloat);
+        program.setFloat("uNear", float(near));
+        program.setFloat("uBand", band);
+        if (pass == 0) {
+            program.setFloat("uNormalNoise", settings.normalNoise);
+            program.setVec2("uViewport", viewport);
+            program.setFloat("uMaximumPointSize", maximumPointSize_);
+        }
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, pass == 0 ? 0 : 1,
+                         pass == 0 ? ellipsoidBuffer_ : lineBuffer_);
+        for (const DrawRun& run : selection_.runs) {
+            const std::uint32_t count = pass == 0 ? run.ellipsoids : run.lines;
+            if (run.kind != DrawRun::Kind::Primitives || count == 0) {
+                continue;
+            }
+            const Species& species = *species_[run.species];
+            program.setFloat("uMeshError", handover ? lods_[run.species].meshError : 0.0f);
+            if (pass == 1) {
+                glDrawArraysInstancedBaseInstance(GL_TRIANGLES, GLint(species.firstLine * 6),
+                                                  GLsizei(count * 6), GLsizei(run.instanceCount),
+                                                  run.firstInstance);
+                ++statistics_.drawCalls;
+                continue;
+            }
+            program.setInt("uQuadPass", 0);
+            glDrawArraysInstancedBaseInstance(GL_POINTS, GLint(species.firstEllipsoid),
+                                              GLsizei(count), GLsizei(run.instanceCount),
+                                              run.firstInstance);
+            ++statistics_.drawCalls;
+            if (mayExceedPointSize(run, selection.pixelAngle, cornerTangent, near)) {
+                program.setInt("uQuadPass", 1);
+                glDrawArraysInstancedBaseInstance(GL_TRIANGLES, GLint(species.firstEllipsoid * 6),
+                                                  GLsizei(count * 6), GLsizei(run.instanceCount),
+                                                  run.firstInstance);
+                ++statistics_.drawCalls;
+                ++statistics_.quadPassRuns;
+            }
+        }
+    }
+    glDisable(GL_PROGRAM_POINT_SIZE);
+
+    // Meshes: the source model (close-ups, the Mesh method) and billboard-cloud levels.
+    meshProgram_.use();
+    meshProgram_.setMat4("uProjection", projectionFloat);
+    meshProgram_.setFloat("uBand", band);
+    meshProgram_.setInt("uTexture", 0);
+    constexpr float kInfinity = std::numeric_limits<float>::infinity();
+    for (const DrawRun& run : selection_.runs) {
+        const Species& species = *species_[run.species];
+        const SpeciesLod& lod = lods_[run.species];
+        if (run.kind == DrawRun::Kind::Mesh) {
+            const float maximum = handover ? lod.meshError : kInfinity;
+            drawMeshes(species.mesh, run, glm::vec2(0.0f, maximum));
+            statistics_.meshInstances += run.instanceCount;
+        } else if (run.kind == DrawRun::Kind::Billboard &&
+                   run.bucket < species.billboardLevels.size()) {
+            const std::size_t level = run.bucket;
+            const float minimum = lod.billboardError[level];
+            const float maximum =
+                level + 1 < lod.billboardError.size() ? lod.billboardError[level + 1] : kInfinity;
+            drawMeshes(species.billboardLevels[level], run, glm::vec2(minimum, maximum));
+            statistics_.billboardInstances += run.instanceCount;
+        }
+    }
+    glBindVertexArray(0);
+}
+
+bool VegetationRenderer::mayExceedPointSize(const DrawRun& run, double pixelAngle,
+                                            double cornerTangent, double near) const {
+    const SpeciesLod& lod = lods_[run.species];
+    const double radius =
+        run.bucket < lod.ellipsoidRadius.size() ? lod.ellipsoidRadius[run.bucket] : 0.0;
+    if (radius <= 0.0) {
+        return false;
+    }
+    // Every ellipsoid of an instance lies within the instance's bounding sphere, so the
+    // sprite's quad (its outline × 1.01, in front of it) is seen under a half-angle of at
+    // most beta = atan(1.01 r / nearest sphere distance). On screen (tangent units, one
+    // pixel = pixelAngle at the centre) an object of half-angle beta that still overlaps
+    // the frustum spans at most tan(corner + 2 beta) - tan(corner).
+    double nearest = std::numeric_limits<double>::infinity(), largestScale = 0.0;
+    for (std::uint32_t i = run.firstInstance; i < run.firstInstance + run.instanceCount; ++i) {
+        const DrawInstance& instance = selection_.instances[i];
+        const glm::vec3 axisX(instance.axisX), axisY(instance.axisY), axisZ(instance.axisZ);
+        const double scale = glm::length(axisX);
+        const glm::vec3 center = glm::vec3(instance.origin) + axisX * lod.sphereCenter.x +
+                                 axisY * lod.sphereCenter.y + axisZ * lod.sphereCenter.z;
+        nearest = std::min(nearest, double(glm::length(center)) - lod.sphereRadius * scale);
+        largestScale = std::max(largestScale, scale);
+    }
+    if (nearest <= near) {
+        return true;
+    }
+    const double beta = std::atan(radius * largestScale * 1.01 / nearest);
+    const double corner = std::atan(cornerTangent);
+    constexpr double kRightAngle = std::numbers::pi / 2;
+    if (corner + 2.0 * beta >= kRightAngle * 0.99) {
+        return true;
+    }
+    const double pixels = (std::tan(corner + 2.0 * beta) - cornerTangent) / pixelAngle + 2.0;
+    return pixels > double(maximumPointSize_);
+}
+
+void VegetationRenderer::drawMeshes(const std::vector<std::unique_ptr<VegetationMesh>>& meshes,
+                                    const DrawRun& run, glm::vec2 interval) {
+    meshProgram_.setVec2("uInterval", interval);
+    for (const std::unique_ptr<VegetationMesh>& mesh : meshes) {
+        meshProgram_.setVec4("uBaseColor", mesh->baseColor);
+        meshProgram_.setFloat("uAlphaCutoff", mesh->alphaCutoff);
+        meshProgram_.setInt("uHasTexture", mesh->texture != 0 ? 1 : 0);
+        meshProgram_.setFloat("uAmbientOcclusion", 1.0f);
+        glBindTextureUnit(0, mesh->texture);
+        glBindVertexArray(mesh->vertexArray);
+        glDrawElementsInstancedBaseInstance(GL_TRIANGLES, mesh->indexCount, GL_UNSIGNED_INT,
+                                            nullptr, GLsizei(run.instanceCount), run.firstInstance);
+        ++statistics_.drawCalls;
+    }
+}
+
+}  // namespace sylva::render

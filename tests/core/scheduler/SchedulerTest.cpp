@@ -1,0 +1,511 @@
+#include "sylva/core/scheduler/Scheduler.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <numbers>
+#include <random>
+#include <thread>
+
+#if defined(__linux__)
+#include <sys/resource.h>
+#include <unistd.h>
+#endif
+
+namespace sylva {
+namespace {
+
+using namespace std::chrono_literals;
+
+// Blocks produce() calls of gated sources until opened.
+class Gate {
+public:
+    void open() {
+        {
+            std::lock_guard lock(mutex_);
+            open_ = true;
+        }
+        wake_.notify_all();
+    }
+    void pass() {
+        std::unique_lock lock(mutex_);
+        ++waiting_;
+        wake_.notify_all();
+        wake_.wait(lock, [&] { return open_; });
+    }
+    void waitForWaiters(int count) {
+        std::unique_lock lock(mutex_);
+        wake_.wait(lock, [&] { return waiting_ >= count; });
+    }
+
+private:
+    std::mutex mutex_;
+    std::condition_variable wake_;
+    bool open_ = false;
+    int waiting_ = 0;
+};
+
+// A test source: value = sum of its inputs' values + tag + key.x, counted calls, an
+// optional delay, failure, gate and a log of the keys produced (in order).
+class TestSource final : public Source {
+public:
+    TestSource(std::string name, std::uint64_t tag, std::vector<const Source*> inputs = {})
+        : Source(std::move(name), "test", PortType::Elevation, 1), tag_(tag) {
+        for (const Source* input : inputs) {
+            addInput(input);
+        }
+        setParameterHash(tag);
+    }
+    Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override {
+        ++calls;
+        if (gate != nullptr) {
+            gate->pass();
+        }
+        {
+            std::lock_guard lock(logMutex);
+            log.push_back(key);
+        }
+        if (delay.count() > 0) {
+            std::this_thread::sleep_for(delay);
+        }
+        if (fail) {
+            return Error{"disk on fire"};
+        }
+        float value = float(tag_) + float(key.x);
+        for (const Source* input : inputs()) {
+            Result<TilePointer> in = provider.tile(*input, key);
+            if (!in) {
+                return in.error();
+            }
+            value += in.value()->at(0, 0, 0);
+        }
+        auto tile =
+            std::make_shared<ImageTile>(key, provider.format().size, provider.format().border, 1);
+        for (float& t : tile->texels()) {
+            t = value;
+        }
+        return TilePointer(std::move(tile));
+    }
+    mutable std::atomic<int> calls{0};
+    mutable std::mutex logMutex;
+    mutable std::vector<TileKey> log;
+    std::chrono::microseconds delay{0};
+    bool fail = false;
+    Gate* gate = nullptr;
+
+private:
+    std::uint64_t tag_;
+};
+
+SchedulerOptions options(int workers, std::size_t budget = 1u << 30) {
+    SchedulerOptions result;
+    result.format = TileFormat{8, 1};
+    result.workers = workers;
+    result.budgetBytes = budget;
+    return result;
+}
+
+constexpr std::size_t kTileBytes = 10 * 10 * sizeof(float);  // 8² + 1-texel border
+
+TEST(Scheduler, ConcurrentRequestsForOneTileProduceItOnce) {
+    TestSource source("slow", 1);
+    source.delay = 20ms;
+    Scheduler scheduler(options(4));
+    const TileKey key{3, 0, 5, 2};
+    std::vector<std::thread> threads;
+    std::atomic<int> correct{0};
+    for (int i = 0; i < 8; ++i) {
+        threads.emplace_back([&] {
+            Result<TilePointer> tile = scheduler.tile(source, key);
+            if (tile && tile.value()->at(0, 0, 0) == 6.0f) {
+                ++correct;
+            }
+        });
+    }
+    for (int i = 0; i < 8; ++i) {
+        scheduler.request(source, key, i);
+        (void)scheduler.tryGet(source, key, 0);
+    }
+    for (std::thread& thread : threads) {
+        thread.join();
+    }
+    scheduler.waitIdle();
+    EXPECT_EQ(correct.load(), 8);
+    EXPECT_EQ(source.calls.load(), 1);
+    EXPECT_EQ(scheduler.totals().misses, 1u);
+    EXPECT_GE(scheduler.totals().hits, 1u);
+}
+
+#if defined(__linux__)
+// Seed 001 §4.6: workers run below the render (here: the test) thread in OS priority.
+class NicenessSource final : public Source {
+public:
+    NicenessSource() : Source("niceness", "test", PortType::Elevation, 1) { setParameterHash(99); }
+    Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override {
+        niceness = getpriority(PRIO_PROCESS, static_cast<id_t>(gettid()));
+        return TilePointer(std::make_shared<ImageTile>(key, provider.format().size, 0, 1));
+    }
+    mutable std::atomic<int> niceness{-100};
+};
+
+TEST(Scheduler, WorkersRunBelowTheCallersPriority) {
+    NicenessSource source;
+    SchedulerOptions settings = options(1);
+    settings.workerNiceIncrement = 5;
+    Scheduler scheduler(settings);
+    const int caller = getpriority(PRIO_PROCESS, static_cast<id_t>(gettid()));
+    scheduler.request(source, TileKey{1, 0, 0, 0}, 0);
+    scheduler.waitIdle();
+    EXPECT_EQ(source.niceness.load(), std::min(19, caller + 5));
+}
+#endif
+
+TEST(Scheduler, OneWorkerRunsQueuedTasksInPriorityOrder) {
+    TestSource blocker("blocker", 1);
+    Gate gate;
+    blocker.gate = &gate;
+    TestSource source("ordered", 2);
+    Scheduler scheduler(options(1));
+    scheduler.request(blocker, TileKey{0, 0, 0, 0}, 0);
+    gate.waitForWaiters(1);  // the only worker is busy now
+    const int priorities[] = {7, 3, 9, 1, 5, 0, 8, 2, 6, 4};
+    for (int i = 0; i < 10; ++i) {
+        scheduler.request(source, TileKey{4, 0, i, 0}, priorities[i]);
+    }
+    while (scheduler.queuedTasks() < 10) {
+        std::this_thread::sleep_for(1ms);
+    }
+    gate.open();
+    scheduler.waitIdle();
+    ASSERT_EQ(source.log.size(), 10u);
+    for (std::size_t i = 0; i < 10; ++i) {
+        const int x = source.log[i].x;
+        EXPECT_EQ(priorities[x], int(i)) << "position " << i;
+    }
+    EXPECT_EQ(Scheduler::priority(3, true), 3);
+    EXPECT_LT(Scheduler::priority(20, true), Scheduler::priority(0, false));
+}
+
+TEST(Scheduler, CancelledQueuedTasksNeverRunAndRunningOnesAreCached) {
+    TestSource running("running", 1);
+    Gate gate;
+    running.gate = &gate;
+    TestSource queued("queued", 2);
+    Scheduler scheduler(options(1));
+    const TileKey key{2, 0, 1, 1};
+    EXPECT_EQ(scheduler.tryGet(running, key, 0).state, TileLookup::State::Pending);
+    gate.waitForWaiters(1);
+    for (int i = 0; i < 6; ++i) {
+        scheduler.request(queued, TileKey{3, 0, i, 0}, 1);
+    }
+    while (scheduler.queuedTasks() < 6) {
+        std::this_thread::sleep_for(1ms);
+    }
+    scheduler.cancel(queued, TileKey{3, 0, 0, 0});
+    scheduler.cancel(running, key);  // already running: finishes and is cached
+    // The renderer's per-frame list keeps only x = 4 and 5 (and asks for x = 7).
+    scheduler.setWanted({{&queued, TileKey{3, 0, 4, 0}, 1},
+                         {&queued, TileKey{3, 0, 5, 0}, 1},
+                         {&queued, TileKey{3, 0, 7, 0}, 1}});
+    scheduler.setWanted({{&queued, TileKey{3, 0, 4, 0}, 1},
+                         {&queued, TileKey{3, 0, 5, 0}, 1},
+                         {&queued, TileKey{3, 0, 7, 0}, 1}});
+    gate.open();
+    scheduler.waitIdle();
+    EXPECT_EQ(running.calls.load(), 1);
+    const TileLookup lookup = scheduler.tryGet(running, key, 0);
+    ASSERT_EQ(lookup.state, TileLookup::State::Ready);
+    EXPECT_EQ(lookup.tile->at(0, 0, 0), 2.0f);
+    std::vector<int> produced;
+    for (const TileKey& k : queued.log) {
+        produced.push_back(k.x);
+    }
+    std::sort(produced.begin(), produced.end());
+    EXPECT_EQ(produced, (std::vector<int>{4, 5, 7}));
+    scheduler.cancelAll();
+    scheduler.waitIdle();
+}
+
+TEST(Scheduler, FailureIsReportedOnceAndRepeatedWithoutRetry) {
+    TestSource broken("broken", 1);
+    broken.fail = true;
+    TestSource user("user", 2, {&broken});
+    std::mutex reportsMutex;
+    std::vector<std::string> reports;
+    SchedulerOptions settings = options(2);
+    settings.failureSink = [&](const Error& error) {
+        std::lock_guard lock(reportsMutex);
+        reports.push_back(error.message);
+    };
+    Scheduler scheduler(settings);
+    const TileKey key{1, 0, 2, 1};
+    scheduler.request(broken, key, 0);
+    scheduler.waitIdle();
+    for (int i = 0; i < 5; ++i) {
+        const TileLookup lookup = scheduler.tryGet(broken, key, 0);
+        ASSERT_EQ(lookup.state, TileLookup::State::Failed);
+        EXPECT_NE(lookup.error.message.find("disk on fire"), std::string::npos);
+        EXPECT_NE(lookup.error.message.find("source 'broken'"), std::string::npos);
+        Result<TilePointer> blocking = scheduler.tile(broken, key);
+        ASSERT_FALSE(blocking);
+        EXPECT_EQ(blocking.error().message, lookup.error.message);
+    }
+    Result<TilePointer> dependent = scheduler.tile(user, key);
+    ASSERT_FALSE(dependent);
+    EXPECT_NE(dependent.error().message.find("disk on fire"), std::string::npos);
+    (void)scheduler.tile(user, key);
+    EXPECT_EQ(broken.calls.load(), 1);
+    EXPECT_EQ(user.calls.load(), 1);
+    std::lock_guard lock(reportsMutex);
+    ASSERT_EQ(reports.size(), 2u);  // the broken tile and its dependent, once each
+    EXPECT_EQ(scheduler.totals().failures, 2u);
+}
+
+TEST(Scheduler, NestedDependenciesWithManyWorkersNeverDeadlock) {
+    // A diamond chain: every top tile needs the same few shared inputs at each depth,
+    // with more workers than cores and requests from several threads at once.
+    TestSource base("base", 1);
+    base.delay = 200us;
+    TestSource left("left", 2, {&base});
+    TestSource right("right", 3, {&base});
+    TestSource top("top", 4, {&left, &right, &base});
+    Scheduler scheduler(options(8));
+    std::vector<TileRequest> wanted;
+    for (int x = 0; x < 16; ++x) {
+        wanted.push_back({&top, TileKey{4, 0, x, 3}, x});
+    }
+    scheduler.setWanted(wanted);
+    std::vector<std::thread> clients;
+    for (int c = 0; c < 4; ++c) {
+        clients.emplace_back([&, c] {
+            for (int x = 15 - c; x >= 0; x -= 2) {
+                Result<TilePointer> tile = scheduler.tile(top, TileKey{4, 0, x, 3});
+                ASSERT_TRUE(tile);
+                // top = 4 + x + (2 + x + base) + (3 + x + base) + base, base = 1 + x
+                EXPECT_EQ(tile.value()->at(0, 0, 0), float(12 + 6 * x));
+            }
+        });
+    }
+    for (std::thread& client : clients) {
+        client.join();
+    }
+    scheduler.waitIdle();
+    EXPECT_EQ(base.calls.load(), 16);
+    EXPECT_EQ(left.calls.load(), 16);
+    EXPECT_EQ(right.calls.load(), 16);
+    EXPECT_EQ(top.calls.load(), 16);
+}
+
+TEST(Scheduler, CachedBytesStayWithinTheBudgetPlusOneTilePerWorker) {
+    TestSource base("base", 1);
+    TestSource derived("derived", 2, {&base});
+    const std::size_t budget = 20 * kTileBytes;
+    const int workers = 3;
+    Scheduler scheduler(options(workers, budget));
+    for (int round = 0; round < 4; ++round) {
+        std::vector<TileRequest> wanted;
+        for (int x = 0; x < 64; ++x) {
+            wanted.push_back({&derived, TileKey{6, 0, x + round * 7, 10}, x});
+        }
+        scheduler.setWanted(wanted);
+        scheduler.waitIdle();
+    }
+    EXPECT_LE(scheduler.peakCachedBytes(), budget + workers * kTileBytes);
+    EXPECT_GT(scheduler.peakCachedBytes(), budget / 2);
+    const SchedulerStatistics totals = scheduler.totals();
+    EXPECT_LE(totals.bytes, budget);
+    EXPECT_GT(totals.evictions, 0u);
+    EXPECT_EQ(totals.bytes, totals.tiles * kTileBytes);
+    const std::vector<SchedulerStatistics> perSource = scheduler.statisticsPerSource();
+    ASSERT_EQ(perSource.size(), 2u);
+    EXPECT_EQ(perSource[0].name, "base");
+    EXPECT_EQ(perSource[1].name, "derived");
+    EXPECT_EQ(perSource[0].misses + perSource[1].misses, totals.misses);
+}
+
+TEST(Scheduler, FocusDistanceCountsRingsAroundTheQuad) {
+    // Level 3, k 0: 16 x 8 tiles of 22.5°. Focus at lon -180 + 22.5 * 5.3, lat 90 - 22.5 * 2.7.
+    const double degree = std::numbers::pi / 180;
+    const double longitude = (-180 + 22.5 * 5.3) * degree, latitude = (90 - 22.5 * 2.7) * degree;
+    // fx = 5.3: quad columns 4..5; fy = 2.7: quad rows 2..3.
+    EXPECT_EQ(Scheduler::focusDistance({3, 0, 4, 2}, latitude, longitude), 0);
+    EXPECT_EQ(Scheduler::focusDistance({3, 0, 5, 3}, latitude, longitude), 0);
+    EXPECT_EQ(Scheduler::focusDistance({3, 0, 6, 3}, latitude, longitude), 1);
+    EXPECT_EQ(Scheduler::focusDistance({3, 0, 3, 1}, latitude, longitude), 1);
+    EXPECT_EQ(Scheduler::focusDistance({3, 0, 5, 6}, latitude, longitude), 3);
+    // Across the antimeridian: column 15 is next to column 0.
+    const double west = (-180 + 22.5 * 0.2) * degree;
+    EXPECT_EQ(Scheduler::focusDistance({3, 0, 15, 2}, latitude, west), 0);
+    EXPECT_EQ(Scheduler::focusDistance({3, 0, 14, 2}, latitude, west), 1);
+}
+
+TEST(Scheduler, PruningKeepsTheRingAroundTheFocus) {
+    TestSource source("grid", 1);
+    const std::size_t budget = 30 * kTileBytes;
+    Scheduler scheduler(options(1, budget));
+    // Level 4: 32 x 16 tiles. Focus in tile (10.3, 7.4): quad x 9..10, y 6..7; the
+    // ring adjacent to it is x 8..11, y 5..8 (16 tiles in all).
+    const double longitude = (10.3 / 32) * 2 * std::numbers::pi - std::numbers::pi;
+    const double latitude = std::numbers::pi / 2 - 7.4 / 16 * std::numbers::pi;
+    scheduler.setFocus(latitude, longitude);
+    // Touch the ring first, then many far tiles (more recently used than the ring).
+    for (int y = 5; y <= 8; ++y) {
+        for (int x = 8; x <= 11; ++x) {
+            ASSERT_TRUE(scheduler.tile(source, TileKey{4, 0, x, y}));
+        }
+    }
+    for (int y = 0; y < 16; ++y) {
+        for (int x = 16; x < 32; ++x) {
+            ASSERT_TRUE(scheduler.tile(source, TileKey{4, 0, x, y}));
+        }
+    }
+    EXPECT_LE(scheduler.totals().bytes, budget);
+    const int callsBefore = source.calls.load();
+    for (int y = 5; y <= 8; ++y) {
+        for (int x = 8; x <= 11; ++x) {
+            const TileLookup lookup = scheduler.tryGet(source, TileKey{4, 0, x, y}, 0);
+            EXPECT_EQ(lookup.state, TileLookup::State::Ready) << x << "," << y;
+        }
+    }
+    scheduler.waitIdle();
+    EXPECT_EQ(source.calls.load(), callsBefore);
+    // Without a focus: least recently used goes first.
+    Scheduler lru(options(1, 4 * kTileBytes));
+    for (int x = 0; x < 6; ++x) {
+        ASSERT_TRUE(lru.tile(source, TileKey{4, 0, x, 0}));
+    }
+    EXPECT_EQ(lru.tryGet(source, TileKey{4, 0, 5, 0}, 0).state, TileLookup::State::Ready);
+    EXPECT_EQ(lru.tryGet(source, TileKey{4, 0, 2, 0}, 0).state, TileLookup::State::Ready);
+    lru.cancelAll();
+    EXPECT_EQ(lru.tryGet(source, TileKey{4, 0, 0, 0}, 0).state, TileLookup::State::Pending);
+    lru.cancelAll();
+    lru.waitIdle();
+}
+
+TEST(Scheduler, InvalidationDropsTheNodeAndItsDependentsOnly) {
+    TestSource terrain("terrain", 1);
+    TestSource colour("colour", 2);
+    TestSource normals("normals", 3, {&terrain});
+    TestSource shaded("shaded", 4, {&normals, &colour});
+    Scheduler scheduler(options(2));
+    const TileKey key{2, 0, 3, 1};
+    ASSERT_TRUE(scheduler.tile(shaded, key));
+    const std::vector<std::uint64_t> dropped = scheduler.invalidate(terrain.contentHash());
+    EXPECT_EQ(dropped.size(), 3u);  // terrain, normals, shaded
+    ASSERT_TRUE(scheduler.tile(shaded, key));
+    EXPECT_EQ(terrain.calls.load(), 2);
+    EXPECT_EQ(normals.calls.load(), 2);
+    EXPECT_EQ(shaded.calls.load(), 2);
+    EXPECT_EQ(colour.calls.load(), 1);  // unchanged branch: still cached
+
+    // A reload where only `colour` changed: new colour and shaded nodes, old ones go.
+    TestSource colour2("colour", 20);
+    TestSource shaded2("shaded", 4, {&normals, &colour2});
+    ASSERT_NE(shaded2.contentHash(), shaded.contentHash());
+    scheduler.retainOnly({terrain.contentHash(), normals.contentHash(), colour2.contentHash(),
+                          shaded2.contentHash()});
+    ASSERT_TRUE(scheduler.tile(shaded2, key));
+    EXPECT_EQ(terrain.calls.load(), 2);
+    EXPECT_EQ(normals.calls.load(), 2);
+    EXPECT_EQ(colour2.calls.load(), 1);
+    EXPECT_EQ(shaded2.calls.load(), 1);
+    EXPECT_EQ(scheduler.statisticsPerSource().size(), 4u);
+    // The old shaded node's tiles are gone: asking again produces it again.
+    ASSERT_TRUE(scheduler.tile(shaded, key));
+    EXPECT_EQ(shaded.calls.load(), 3);
+    EXPECT_EQ(colour.calls.load(), 2);
+}
+
+TEST(Scheduler, StressRandomFocusRequestsCancelsAndInvalidations) {
+    // Real threads for >= 10 s: a render thread moving the focus and handing wanted
+    // lists, a blocking reader, invalidations and budget changes. Checked: every tile
+    // returned has the right value, nothing deadlocks, the budget holds.
+    TestSource base("base", 1);
+    base.delay = 50us;
+    TestSource detail("detail", 2);
+    TestSource mid("mid", 3, {&base});
+    TestSource top("top", 4, {&mid, &detail, &base});
+    const int workers = 3;
+    const std::size_t budget = 200 * kTileBytes;
+    std::atomic<int> failures{0};
+    SchedulerOptions settings = options(workers, budget);
+    settings.failureSink = [&](const Error&) { ++failures; };
+    Scheduler scheduler(settings);
+    const auto expected = [](int x) { return float(4 + x + (3 + x + 1 + x) + (2 + x) + (1 + x)); };
+    std::atomic<bool> stop{false};
+    std::atomic<long> checked{0}, wrong{0};
+    const auto deadline = std::chrono::steady_clock::now() + 10s;
+    std::thread reader([&] {
+        std::mt19937 random(7);
+        while (!stop) {
+            const int level = 3 + int(random() % 4);
+            const TileKey key{level, 0, int(random() % TileKey::columns(level, 0)),
+                              int(random() % TileKey::rows(level))};
+            Result<TilePointer> tile = scheduler.tile(top, key);
+            if (!tile || tile.value()->at(1, 1, 0) != expected(key.x)) {
+                ++wrong;
+            }
+            ++checked;
+        }
+    });
+    std::mt19937 random(11);
+    double latitude = 0.3, longitude = 1.0;
+    long frames = 0;
+    while (std::chrono::steady_clock::now() < deadline) {
+        latitude = std::clamp(latitude + (int(random() % 201) - 100) * 1e-3, -1.4, 1.4);
+        longitude =
+            std::remainder(longitude + (int(random() % 201) - 100) * 2e-3, 2 * std::numbers::pi);
+        scheduler.setFocus(latitude, longitude);
+        std::vector<TileRequest> wanted;
+        for (int level = 2; level <= 7; ++level) {
+            const int columns = TileKey::columns(level, 0), rows = TileKey::rows(level);
+            const int fx = int((longitude + std::numbers::pi) / (2 * std::numbers::pi) * columns);
+            const int fy = int((std::numbers::pi / 2 - latitude) / std::numbers::pi * rows);
+            for (int dy = 0; dy <= 1; ++dy) {
+                for (int dx = 0; dx <= 1; ++dx) {
+                    const TileKey key{level, 0, (fx + dx) % columns, std::min(fy + dy, rows - 1)};
+                    const TileLookup lookup = scheduler.tryGet(top, key, level);
+                    if (lookup.state == TileLookup::State::Ready &&
+                        lookup.tile->at(0, 0, 0) != expected(key.x)) {
+                        ++wrong;
+                    }
+                    wanted.push_back({&top, key, level});
+                }
+            }
+        }
+        switch (random() % 16) {
+            case 0:
+                (void)scheduler.invalidate(base.contentHash());
+                break;
+            case 1:
+                (void)scheduler.invalidate(detail.contentHash());
+                break;
+            case 2:
+                scheduler.cancel(top, wanted[random() % wanted.size()].key);
+                break;
+            case 3:
+                scheduler.cancelAll();
+                break;
+            default:
+                scheduler.setWanted(wanted);
+                break;
+        }
+        ++frames;
+        std::this_thread::sleep_for(std::chrono::microseconds(random() % 2000));
+    }
+    stop = true;
+    reader.join();
+    scheduler.waitIdle();
+    EXPECT_EQ(wrong.load(), 0);
+    EXPECT_EQ(failures.load(), 0);
+    EXPECT_GT(checked.load(), 100);
+    EXPECT_GT(frames, 1000);
+    EXPECT_LE(scheduler.peakCachedBytes(), budget + workers * kTileBytes);
+    EXPECT_LE(scheduler.totals().bytes, budget);
+}
+
+}  // namespace
+}  // namespace sylva
