@@ -22,11 +22,11 @@
 #include "sylva/core/plantlod/PlantGenerator.h"
 #include "sylva/core/plantlod/PlantGltfWriter.h"
 #include "sylva/core/plantlod/PlantImporter.h"
+#include "sylva/core/scheduler/TileEvaluator.h"
+#include "sylva/core/sources/compose/RasterizeSource.h"
+#include "sylva/core/sources/plants/PlantsSource.h"
 #include "sylva/core/sources/raster/ConstantSource.h"
 #include "sylva/core/sources/raster/MaskSource.h"
-#include "sylva/core/sources/plants/PlantsSource.h"
-#include "sylva/core/sources/compose/RasterizeSource.h"
-#include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/dsl/ProjectLoader.h"
 
 #include <cmath>
@@ -353,7 +353,8 @@ int runBench(const std::vector<std::string>& arguments) {
     }
     if (command.has("help")) {
         std::printf(
-            "usage: sylva bench SUITE [--json]\nsuites: %s, terrain, tiles, plantlod, turnaround, vegetation\n",
+            "usage: sylva bench SUITE [--json]\nsuites: %s, terrain, tiles, plantlod, turnaround, "
+            "vegetation\n",
             names.c_str());
         return 0;
     }

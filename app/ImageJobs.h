@@ -10,9 +10,9 @@
 
 #include "sylva/core/base/Result.h"
 #include "sylva/core/image/ImageWriter.h"
+#include "sylva/core/model/ProjectModel.h"
 #include "sylva/core/scene/Camera.h"
 #include "sylva/core/scene/CameraPath.h"
-#include "sylva/core/model/ProjectModel.h"
 #include "sylva/core/scene/ViewSeries.h"
 #include "sylva/core/sources/graph/SourceGraph.h"
 #include "sylva/render/scene/SceneRenderer.h"

@@ -8,7 +8,9 @@
 
 namespace sylva::app {
 
-void reportError(const std::string& message) { std::fprintf(stderr, "sylva: %s\n", message.c_str()); }
+void reportError(const std::string& message) {
+    std::fprintf(stderr, "sylva: %s\n", message.c_str());
+}
 
 dsl::LoadOptions loadOptionsFor(const ParsedCommandLine& command,
                                 std::vector<std::pair<std::string, std::string>> sets) {
@@ -30,8 +32,9 @@ void printDiagnostics(const dsl::LoadResult& loaded) {
     }
 }
 
-std::optional<ProjectSession> ProjectSession::open(const std::filesystem::path& file,
-                                                   const std::vector<std::pair<std::string, std::string>>& defines) {
+std::optional<ProjectSession> ProjectSession::open(
+    const std::filesystem::path& file,
+    const std::vector<std::pair<std::string, std::string>>& defines) {
     dsl::LoadOptions options;
     options.defines = defines;
     dsl::LoadResult loaded = dsl::loadProject(file, options);
@@ -51,7 +54,8 @@ std::optional<ProjectSession> ProjectSession::open(const std::filesystem::path& 
     return session;
 }
 
-Result<std::pair<const ProjectModel*, SourceGraph*>> ProjectSession::forScenario(const std::string& scenario) {
+Result<std::pair<const ProjectModel*, SourceGraph*>> ProjectSession::forScenario(
+    const std::string& scenario) {
     const ProjectModel* scenarioModel = nullptr;
     for (const ProjectModel& candidate : scenarios) {
         if (candidate.scenario == scenario) {

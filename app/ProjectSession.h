@@ -9,16 +9,16 @@
 #include <utility>
 #include <vector>
 
-#include "sylva/core/model/ProjectModel.h"
 #include "CommandLine.h"
+#include "sylva/core/model/ProjectModel.h"
 #include "sylva/core/sources/graph/SourceGraph.h"
 #include "sylva/dsl/ProjectLoader.h"
 
 namespace sylva::app {
 
 struct ProjectSession {
-    ProjectModel model;                  // the first (default) scenario's model
-    std::optional<SourceGraph> graph;    // its source graph
+    ProjectModel model;                   // the first (default) scenario's model
+    std::optional<SourceGraph> graph;     // its source graph
     std::vector<ProjectModel> scenarios;  // one model per scenario (overrides applied)
 
     // The model and source graph of `scenario` (the default ones when empty or when the
@@ -30,8 +30,9 @@ struct ProjectSession {
     // nullopt after printing the reasons when the project has errors.
     std::map<std::string, SourceGraph> scenarioGraphs;
 
-    static std::optional<ProjectSession> open(const std::filesystem::path& file,
-                                              const std::vector<std::pair<std::string, std::string>>& defines);
+    static std::optional<ProjectSession> open(
+        const std::filesystem::path& file,
+        const std::vector<std::pair<std::string, std::string>>& defines);
 };
 
 // Load options from a command's -D defines, --set pairs and --lenient flag.

@@ -7,22 +7,28 @@
 #include "CommandLine.h"
 #include "Commands.h"
 #include "ProjectSession.h"
-#include "sylva/render/gl/GlContext.h"
 #include "sylva/bench/TerrainBenchmark.h"
+#include "sylva/render/gl/GlContext.h"
 
 namespace sylva::app {
 
 int runTerrainBench(const std::vector<std::string>& arguments) {
-    const ParsedCommandLine command =
-        parseCommandLine(arguments, {{"json", false}, {"size"}, {"dem"}, {"frames"}, {"gl"}, {"write-frames"}, {"wait-for-tiles", false}, {"cache-mb"}});
+    const ParsedCommandLine command = parseCommandLine(arguments, {{"json", false},
+                                                                   {"size"},
+                                                                   {"dem"},
+                                                                   {"frames"},
+                                                                   {"gl"},
+                                                                   {"write-frames"},
+                                                                   {"wait-for-tiles", false},
+                                                                   {"cache-mb"}});
     if (!command.error.empty() || !command.positional.empty()) {
         reportError(command.error.empty() ? "bench terrain takes no arguments" : command.error);
         return 2;
     }
     bench::TerrainBenchmarkOptions options;
     if (std::optional<std::string> size = command.get("size")) {
-        if (std::sscanf(size->c_str(), "%dx%d", &options.width, &options.height) != 2 || options.width < 16 ||
-            options.height < 16) {
+        if (std::sscanf(size->c_str(), "%dx%d", &options.width, &options.height) != 2 ||
+            options.width < 16 || options.height < 16) {
             reportError("--size expects WIDTHxHEIGHT");
             return 2;
         }
@@ -59,7 +65,8 @@ int runTerrainBench(const std::vector<std::string>& arguments) {
         reportError(context.error().message);
         return 1;
     }
-    Result<bench::TerrainBenchmarkResult> result = bench::runTerrainBenchmark(render::ShaderLibrary(), options);
+    Result<bench::TerrainBenchmarkResult> result =
+        bench::runTerrainBenchmark(render::ShaderLibrary(), options);
     if (!result) {
         reportError(result.error().message);
         return 1;

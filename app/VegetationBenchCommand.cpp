@@ -8,8 +8,8 @@
 #include "CommandLine.h"
 #include "Commands.h"
 #include "ProjectSession.h"
-#include "sylva/render/gl/GlContext.h"
 #include "sylva/bench/VegetationBenchmark.h"
+#include "sylva/render/gl/GlContext.h"
 
 namespace sylva::app {
 

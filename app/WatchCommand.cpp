@@ -20,8 +20,8 @@
 #include "Commands.h"
 #include "ImageJobs.h"
 #include "ProjectSession.h"
-#include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/base/FileWatch.h"
+#include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/scheduler/Scheduler.h"
 #include "sylva/render/gl/GlContext.h"
 

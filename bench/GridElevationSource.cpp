@@ -19,15 +19,23 @@ double ElevationGrid::at(double latitude, double longitude, double outside) cons
     const double fx = x - ix, fy = y - iy;
     const float* row0 = heights.data() + std::size_t(iy) * width;
     const float* row1 = row0 + width;
-    return (row0[ix] * (1 - fx) + row0[ix + 1] * fx) * (1 - fy) + (row1[ix] * (1 - fx) + row1[ix + 1] * fx) * fy;
+    return (row0[ix] * (1 - fx) + row0[ix + 1] * fx) * (1 - fy) +
+           (row1[ix] * (1 - fx) + row1[ix + 1] * fx) * fy;
 }
 
 GridElevationSource::GridElevationSource(std::string name, ElevationGrid grid, double outside)
-    : Source(std::move(name), "grid", PortType::Elevation, 1), grid_(std::move(grid)), outside_(outside) {
+    : Source(std::move(name), "grid", PortType::Elevation, 1),
+      grid_(std::move(grid)),
+      outside_(outside) {
     SYLVA_CHECK(grid_.width >= 2 && grid_.height >= 2 &&
                 grid_.heights.size() == std::size_t(grid_.width) * grid_.height);
     ContentHash hash;
-    hash.add(grid_.width).add(grid_.height).add(grid_.west).add(grid_.south).add(grid_.east).add(grid_.north);
+    hash.add(grid_.width)
+        .add(grid_.height)
+        .add(grid_.west)
+        .add(grid_.south)
+        .add(grid_.east)
+        .add(grid_.north);
     hash.add(grid_.heights.data(), grid_.heights.size() * sizeof(float)).add(outside_);
     setParameterHash(hash.value());
 }
@@ -38,7 +46,8 @@ Result<TilePointer> GridElevationSource::produce(const TileKey& key, TileProvide
     parallelFor(-format.border, format.size + format.border, [&](int iy) {
         const double latitude = tile->texelLatitude(iy);
         for (int ix = -format.border; ix < format.size + format.border; ++ix) {
-            tile->at(ix, iy, 0) = static_cast<float>(grid_.at(latitude, tile->texelLongitude(ix), outside_));
+            tile->at(ix, iy, 0) =
+                static_cast<float>(grid_.at(latitude, tile->texelLongitude(ix), outside_));
         }
     });
     return TilePointer(std::move(tile));

@@ -11,8 +11,8 @@
 namespace sylva::bench {
 
 struct ElevationGrid {
-    int width = 0;   // samples per row
-    int height = 0;  // rows
+    int width = 0;                                    // samples per row
+    int height = 0;                                   // rows
     double west = 0, south = 0, east = 0, north = 0;  // radians; samples at the corners
     std::vector<float> heights;                       // metres, width * height, row-major
 

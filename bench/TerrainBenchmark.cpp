@@ -10,17 +10,17 @@
 #include <numbers>
 
 #include "BenchShaders.h"
+#include "GridElevationSource.h"
 #include "sylva/core/base/ParallelFor.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/image/ImageWriter.h"
-#include "GridElevationSource.h"
+#include "sylva/core/scheduler/Scheduler.h"
 #include "sylva/core/sources/raster/HypsometricSource.h"
 #include "sylva/core/sources/raster/NoiseSource.h"
 #include "sylva/core/sources/raster/NormalMapSource.h"
-#include "sylva/core/scheduler/Scheduler.h"
 #include "sylva/render/gl/Framebuffer.h"
-#include "sylva/render/scene/SceneRenderer.h"
 #include "sylva/render/gl/ShaderProgram.h"
+#include "sylva/render/scene/SceneRenderer.h"
 #include "sylva/render/shading/ShadingPass.h"
 
 namespace sylva::bench {
@@ -64,7 +64,8 @@ ElevationGrid makeDem(int samples, double degrees) {
         for (int column = 0; column < samples; ++column) {
             const double longitude = grid.west + column * grid.sampleSpacingLongitude();
             const glm::dvec3 direction = Ellipsoid::surfaceNormal(latitude, longitude);
-            grid.heights[std::size_t(row) * samples + column] = float(noise.height(direction, footprint));
+            grid.heights[std::size_t(row) * samples + column] =
+                float(noise.height(direction, footprint));
         }
     });
     return grid;
@@ -100,8 +101,8 @@ std::vector<FlightFrame> flight(const ElevationGrid& grid, int framesPerSegment)
         const double progress = double(frame) / (total - 1);
         const int segment = std::min(frame / framesPerSegment, segments - 1);
         const double local = double(frame - segment * framesPerSegment) / framesPerSegment;
-        const double altitude =
-            std::exp(std::log(kAltitudes[segment]) * (1 - local) + std::log(kAltitudes[segment + 1]) * local);
+        const double altitude = std::exp(std::log(kAltitudes[segment]) * (1 - local) +
+                                         std::log(kAltitudes[segment + 1]) * local);
         // Approach the DEM centre from the south while descending; look down from
         // space, towards the horizon near the ground.
         const double latitude = kCentreLatitude - 0.6 * kDegree * (1 - progress);
@@ -122,8 +123,9 @@ class GridMesh {
 public:
     static Result<GridMesh> create(const ShaderLibrary& library, const ElevationGrid& grid) {
         GridMesh mesh;
-        Result<ShaderProgram> program =
-            ShaderProgram::create(library, {{GL_VERTEX_SHADER, "bench/grid.vert"}, {GL_FRAGMENT_SHADER, "bench/grid.frag"}});
+        Result<ShaderProgram> program = ShaderProgram::create(
+            library,
+            {{GL_VERTEX_SHADER, "bench/grid.vert"}, {GL_FRAGMENT_SHADER, "bench/grid.frag"}});
         if (!program) {
             return program.error();
         }
@@ -134,8 +136,9 @@ public:
             const double latitude = grid.north - row * grid.sampleSpacingLatitude();
             for (int column = 0; column < grid.width; ++column) {
                 const std::size_t i = std::size_t(row) * grid.width + column;
-                const glm::dvec3 p = Ellipsoid::toEcef(
-                    {latitude, grid.west + column * grid.sampleSpacingLongitude(), double(grid.heights[i])});
+                const glm::dvec3 p =
+                    Ellipsoid::toEcef({latitude, grid.west + column * grid.sampleSpacingLongitude(),
+                                       double(grid.heights[i])});
                 const glm::vec3 relative(p - mesh.centre_);
                 positions[i * 3] = relative.x;
                 positions[i * 3 + 1] = relative.y;
@@ -156,8 +159,10 @@ public:
         mesh.indexCount_ = indices.size();
         glCreateVertexArrays(1, &mesh.vertexArray_);
         glCreateBuffers(2, mesh.buffers_);
-        glNamedBufferStorage(mesh.buffers_[0], GLsizeiptr(positions.size() * sizeof(float)), positions.data(), 0);
-        glNamedBufferStorage(mesh.buffers_[1], GLsizeiptr(indices.size() * sizeof(std::uint32_t)), indices.data(), 0);
+        glNamedBufferStorage(mesh.buffers_[0], GLsizeiptr(positions.size() * sizeof(float)),
+                             positions.data(), 0);
+        glNamedBufferStorage(mesh.buffers_[1], GLsizeiptr(indices.size() * sizeof(std::uint32_t)),
+                             indices.data(), 0);
         glVertexArrayVertexBuffer(mesh.vertexArray_, 0, mesh.buffers_[0], 0, 3 * sizeof(float));
         glVertexArrayElementBuffer(mesh.vertexArray_, mesh.buffers_[1]);
         glEnableVertexArrayAttrib(mesh.vertexArray_, 0);
@@ -218,7 +223,8 @@ std::string TerrainBenchmarkResult::json() const {
     }
     text += ",\"levels_rendered\":[";
     for (std::size_t i = 0; i < levelsPerAltitude.size(); ++i) {
-        std::snprintf(buffer, sizeof buffer, "%s{\"altitude_m\":%.6g,\"coarsest\":%d,\"finest\":%d}", i ? "," : "",
+        std::snprintf(buffer, sizeof buffer,
+                      "%s{\"altitude_m\":%.6g,\"coarsest\":%d,\"finest\":%d}", i ? "," : "",
                       levelsPerAltitude[i].first, levelsPerAltitude[i].second.first,
                       levelsPerAltitude[i].second.second);
         text += buffer;
@@ -233,7 +239,8 @@ Result<TerrainBenchmarkResult> runTerrainBenchmark(const ShaderLibrary& library,
     const ElevationGrid grid = makeDem(options.demSamples, options.demDegrees);
     const std::vector<FlightFrame> frames = flight(grid, options.framesPerSegment);
 
-    Result<std::unique_ptr<SceneRenderer>> created = SceneRenderer::create(library, TerrainSettings{});
+    Result<std::unique_ptr<SceneRenderer>> created =
+        SceneRenderer::create(library, TerrainSettings{});
     if (!created) {
         return created.error();
     }
@@ -270,14 +277,16 @@ Result<TerrainBenchmarkResult> runTerrainBenchmark(const ShaderLibrary& library,
             if (!image) {
                 return Error{"terrain benchmark: " + image.error().message};
             }
-            const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+            const double ms =
+                std::chrono::duration<double, std::milli>(Clock::now() - start).count();
             const RenderStatistics& statistics = renderer.statistics();
             trianglesMax[pass] = std::max(trianglesMax[pass], double(statistics.terrain.triangles));
             if (pass == 0 && !options.framesFolder.empty()) {
                 char name[32];
                 std::snprintf(name, sizeof name, "flight_%03zu.png", totalMs.size());
-                const Status written = ImageWriter::writeRgba8(std::filesystem::path(options.framesFolder) / name,
-                                                               image->width, image->height, image->pixels);
+                const Status written =
+                    ImageWriter::writeRgba8(std::filesystem::path(options.framesFolder) / name,
+                                            image->width, image->height, image->pixels);
                 if (!written) {
                     return written.error();
                 }
@@ -293,10 +302,12 @@ Result<TerrainBenchmarkResult> runTerrainBenchmark(const ShaderLibrary& library,
                 uploadBytes.push_back(double(statistics.terrain.uploadedBytes));
                 if (statistics.terrain.waitingLevel >= 0) {
                     ++framesWaiting;
-                    levelsMissing += statistics.terrain.wanted.finest - statistics.terrain.levels.finest;
+                    levelsMissing +=
+                        statistics.terrain.wanted.finest - statistics.terrain.levels.finest;
                 }
                 result.levelsPerAltitude.push_back(
-                    {frame.altitude, {statistics.terrain.levels.coarsest, statistics.terrain.levels.finest}});
+                    {frame.altitude,
+                     {statistics.terrain.levels.coarsest, statistics.terrain.levels.finest}});
             }
         }
     }
@@ -307,19 +318,22 @@ Result<TerrainBenchmarkResult> runTerrainBenchmark(const ShaderLibrary& library,
     if (!mesh) {
         return mesh.error();
     }
-    Result<Framebuffer> gbuffer = Framebuffer::create(options.width, options.height, {GL_RGBA16F, GL_RGBA16F}, true);
-    Result<Framebuffer> output = Framebuffer::create(options.width, options.height, {GL_RGBA8}, false);
+    Result<Framebuffer> gbuffer =
+        Framebuffer::create(options.width, options.height, {GL_RGBA16F, GL_RGBA16F}, true);
+    Result<Framebuffer> output =
+        Framebuffer::create(options.width, options.height, {GL_RGBA8}, false);
     Result<std::unique_ptr<ShadingPass>> shading = ShadingPass::create(library);
     if (!gbuffer || !output || !shading) {
         return Error{"terrain benchmark: cannot create the brute-force targets"};
     }
     std::vector<double> bruteMs, bruteTotalMs;
     for (int sample = 0; sample < options.bruteForceFrames; ++sample) {
-        const FlightFrame& frame = frames[std::size_t(sample) * (frames.size() - 1) / std::max(1, options.bruteForceFrames - 1)];
+        const FlightFrame& frame = frames[std::size_t(sample) * (frames.size() - 1) /
+                                          std::max(1, options.bruteForceFrames - 1)];
         const double aboveTerrain = frame.altitude;
         const double near = std::clamp(0.3 * aboveTerrain, 0.02, 1.0e4);
-        const glm::dmat4 projection =
-            SceneRenderer::projection(frame.camera.verticalFov, double(options.width) / options.height, near);
+        const glm::dmat4 projection = SceneRenderer::projection(
+            frame.camera.verticalFov, double(options.width) / options.height, near);
         const auto start = Clock::now();
         glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
         gbuffer->bind();
@@ -332,10 +346,12 @@ Result<TerrainBenchmarkResult> runTerrainBenchmark(const ShaderLibrary& library,
         ShadingSettings shade;
         shade.sunDirection = settings.sunDirection;
         shade.exposure = settings.exposure;
-        shading.value()->run(gbuffer.value(), output.value(), frame.camera, projection, near, shade);
+        shading.value()->run(gbuffer.value(), output.value(), frame.camera, projection, near,
+                             shade);
         (void)output->readPixelsRGBA8(0);
         glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
-        bruteTotalMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+        bruteTotalMs.push_back(
+            std::chrono::duration<double, std::milli>(Clock::now() - start).count());
     }
     Framebuffer::unbind();
 
@@ -354,7 +370,8 @@ Result<TerrainBenchmarkResult> runTerrainBenchmark(const ShaderLibrary& library,
     result.metrics["triangles_growth"] = trianglesMax[1] / std::max(trianglesMax[0], 1.0);
     result.metrics["frames"] = double(frames.size());
     result.metrics["frames_waiting_for_tiles"] = framesWaiting;
-    result.metrics["levels_missing_per_waiting_frame"] = framesWaiting ? levelsMissing / framesWaiting : 0.0;
+    result.metrics["levels_missing_per_waiting_frame"] =
+        framesWaiting ? levelsMissing / framesWaiting : 0.0;
     result.metrics["wait_for_tiles"] = options.waitForTiles ? 1 : 0;
     result.metrics["width"] = options.width;
     result.metrics["height"] = options.height;

@@ -17,9 +17,9 @@
 #include "sylva/core/plantlod/ImageErrorMetric.h"
 #include "sylva/core/plantlod/PlantGenerator.h"
 #include "sylva/core/plantlod/PlantLodBuilder.h"
+#include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/core/sources/raster/ConstantSource.h"
 #include "sylva/core/sources/raster/NormalMapSource.h"
-#include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/render/scene/SceneRenderer.h"
 
 namespace sylva::bench {

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/core/sources/raster/HypsometricSource.h"
 #include "sylva/core/sources/raster/NoiseSource.h"
-#include "sylva/core/scheduler/TileEvaluator.h"
 
 int main(int argc, char** argv) {
     sylva::TileKey key{argc > 1 ? std::atoi(argv[1]) : 3, 0, argc > 2 ? std::atoi(argv[2]) : 9,
@@ -28,11 +28,12 @@ int main(int argc, char** argv) {
     sylva::Result<sylva::TilePointer> height = evaluator.tile(relief, key);
     sylva::Result<sylva::TilePointer> rgb = evaluator.tile(colour, key);
     if (!height || !rgb) {
-        std::fprintf(stderr, "tile_dump: %s\n", (!height ? height.error() : rgb.error()).message.c_str());
+        std::fprintf(stderr, "tile_dump: %s\n",
+                     (!height ? height.error() : rgb.error()).message.c_str());
         return 1;
     }
-    std::printf("tile %s: lon [%.4f, %.4f] lat [%.4f, %.4f] rad\n", key.toString().c_str(), key.west(),
-                key.east(), key.south(), key.north());
+    std::printf("tile %s: lon [%.4f, %.4f] lat [%.4f, %.4f] rad\n", key.toString().c_str(),
+                key.west(), key.east(), key.south(), key.north());
     for (int i = 0; i < 64; i += 16) {
         std::printf("  texel (%2d,%2d): height %8.1f m, linear rgb %.3f %.3f %.3f\n", i, i,
                     height.value()->at(i, i, 0), rgb.value()->at(i, i, 0), rgb.value()->at(i, i, 1),

@@ -18,7 +18,8 @@ void parallelFor(int begin, int end, const std::function<void(int)>& body) {
     if (count <= 0) {
         return;
     }
-    const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, std::min(count, 16));
+    const int threads =
+        std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, std::min(count, 16));
     if (threads == 1 || parallelForDisabled) {
         for (int i = begin; i < end; ++i) {
             body(i);

@@ -48,10 +48,10 @@ Result<GeodeticPoint> ProjectedCoordinates::toGeodetic(std::string_view crs, dou
         return Error{transformation.error};
     }
     double longitude = x, latitude = y;
-    if (!transformation.transform->Transform(1, &longitude, &latitude) || !std::isfinite(latitude) ||
-        !std::isfinite(longitude)) {
-        return Error{"cannot convert (" + std::to_string(x) + ", " + std::to_string(y) + ") from '" +
-                     std::string(crs) + "' to WGS84"};
+    if (!transformation.transform->Transform(1, &longitude, &latitude) ||
+        !std::isfinite(latitude) || !std::isfinite(longitude)) {
+        return Error{"cannot convert (" + std::to_string(x) + ", " + std::to_string(y) +
+                     ") from '" + std::string(crs) + "' to WGS84"};
     }
     constexpr double kDegree = std::numbers::pi / 180.0;
     return GeodeticPoint{latitude * kDegree, longitude * kDegree};

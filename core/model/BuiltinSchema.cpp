@@ -53,8 +53,8 @@ AttributeSchema number(std::string name, Dimension dimension, std::optional<doub
 
 AttributeSchema optionalNumber(std::string name, Dimension dimension, std::optional<double> minimum,
                                std::optional<double> maximum, std::string doc) {
-    AttributeSchema a = number(std::move(name), dimension, std::nullopt, minimum, maximum,
-                               std::move(doc));
+    AttributeSchema a =
+        number(std::move(name), dimension, std::nullopt, minimum, maximum, std::move(doc));
     a.required = false;
     return a;
 }
@@ -93,8 +93,8 @@ AttributeSchema referenceList(std::string name, std::string target, PortType por
     return a;
 }
 
-AttributeSchema wordChoice(std::string name, std::vector<std::string> words, std::string defaultWord,
-                           std::string doc) {
+AttributeSchema wordChoice(std::string name, std::vector<std::string> words,
+                           std::string defaultWord, std::string doc) {
     AttributeSchema a;
     a.name = std::move(name);
     a.type = ValueType::Word;
@@ -128,16 +128,22 @@ void addVectorSourceKinds(SchemaRegistry& registry);
 SchemaRegistry makeBuiltin() {
     SchemaRegistry registry;
 
-    registry.add({"project", "", PortType::None, "Project-wide settings.",
-                  {simple("title", ValueType::String, text(""), "Title shown in outputs."),
-                   simple("description", ValueType::String, text(""), "Free text."),
-                   simple("crs", ValueType::String, text(""),
-                          "Coordinate reference system for positions written as [x, y] or [x, y, "
-                          "height] lengths instead of geo(...), e.g. \"EPSG:31985\" (UTM zone 25S); "
-                          "any definition GDAL/PROJ accepts. Empty: only geo() positions.")}});
+    registry.add(
+        {"project",
+         "",
+         PortType::None,
+         "Project-wide settings.",
+         {simple("title", ValueType::String, text(""), "Title shown in outputs."),
+          simple("description", ValueType::String, text(""), "Free text."),
+          simple("crs", ValueType::String, text(""),
+                 "Coordinate reference system for positions written as [x, y] or [x, y, "
+                 "height] lengths instead of geo(...), e.g. \"EPSG:31985\" (UTM zone 25S); "
+                 "any definition GDAL/PROJ accepts. Empty: only geo() positions.")}});
 
     registry.add(
-        {"source", "noise", PortType::Elevation,
+        {"source",
+         "noise",
+         PortType::Elevation,
          "Fractal relief on the sphere: continents from fBm of 3D gradient noise and mountains "
          "from a ridged multifractal masked to land, both evaluated on the unit sphere, so "
          "the surface is seamless at the antimeridian and the poles. Octaves finer than two "
@@ -162,7 +168,9 @@ SchemaRegistry makeBuiltin() {
           number("offset", Dimension::Length, 0, -1e5, 1e5, "Added to every height, in metres.")}});
 
     registry.add(
-        {"source", "normal_map", PortType::Normals,
+        {"source",
+         "normal_map",
+         PortType::Normals,
          "Metric surface normals on the WGS84 ellipsoid (ECEF unit vectors) from an elevation "
          "source, by central differences over the tile border: seamless across tiles and "
          "correct at any latitude.",
@@ -171,7 +179,9 @@ SchemaRegistry makeBuiltin() {
                  "Scale applied to slopes before normalising.")}});
 
     registry.add(
-        {"source", "hypsometric", PortType::Image,
+        {"source",
+         "hypsometric",
+         PortType::Image,
          "Colour from elevation and slope: a hypsometric ramp of height/colour stops "
          "(sRGB colours, interpolated in linear RGB), water below sea level, and rock on "
          "slopes steeper than slope_start, fully at slope_end.",
@@ -195,7 +205,9 @@ SchemaRegistry makeBuiltin() {
     addImageSourceKinds(registry);
     addVectorSourceKinds(registry);
 
-    registry.add({"scenario", "", PortType::None,
+    registry.add({"scenario",
+                  "",
+                  PortType::None,
                   "A state of the landscape: the layers the terrain is made of. Elevation, "
                   "image and normals layers feed the height, colour and normal clipmaps.",
                   {referenceList("layers", "source", PortType::None, true,
@@ -206,7 +218,9 @@ SchemaRegistry makeBuiltin() {
                                           "geo(lat, lon[, height above the ellipsoid]).");
         position.required = true;
         registry.add(
-            {"camera", "", PortType::None,
+            {"camera",
+             "",
+             PortType::None,
              "A viewpoint. Height comes from eye_height (above the terrain) if given, otherwise "
              "from the third component of position (above the ellipsoid).",
              {position,
@@ -232,7 +246,10 @@ SchemaRegistry makeBuiltin() {
             ".png (8-bit sRGB), .exr (linear half-float radiance after exposure, before tone "
             "mapping), .mp4 (one H.264 video per path, encoded by ffmpeg; paths only, no "
             "{frame}). Images carry metadata (camera, scenario, time, project, hashes).");
-        registry.add({"views", "", PortType::None, "A series of images to render.",
+        registry.add({"views",
+                      "",
+                      PortType::None,
+                      "A series of images to render.",
                       {referenceList("cameras", "camera", PortType::None, false,
                                      "Cameras to render (a views block needs cameras or paths)."),
                        referenceList("scenarios", "scenario", PortType::None, false,
@@ -247,14 +264,17 @@ SchemaRegistry makeBuiltin() {
         resolution.element = ValueType::Number;
         resolution.dimension = Dimension::Pixels;
         Value defaultResolution;
-        defaultResolution.data = ValueList{quantity(1280, Dimension::Pixels),
-                                           quantity(720, Dimension::Pixels)};
+        defaultResolution.data =
+            ValueList{quantity(1280, Dimension::Pixels), quantity(720, Dimension::Pixels)};
         resolution.defaultValue = defaultResolution;
         resolution.doc = "Image size [width, height] in pixels.";
         Value sun;
         sun.data = GeoPosition{23 * kDegree, 20 * kDegree, std::nullopt};
         registry.add(
-            {"render", "", PortType::None, "How images are rendered.",
+            {"render",
+             "",
+             PortType::None,
+             "How images are rendered.",
              {resolution,
               simple("sun", ValueType::Geo, sun,
                      "Subsolar point: where on Earth the sun stands at the zenith."),
@@ -264,20 +284,22 @@ SchemaRegistry makeBuiltin() {
                      "Clamp terrain below 0 m to a flat sea surface."),
               number("exposure", Dimension::None, 1.0, 0.01, 100.0,
                      "Scale applied to radiance before tone mapping."),
-              number("max_level", Dimension::None, 24, 4, 28,
-                     "Finest clipmap level drawn."),
+              number("max_level", Dimension::None, 24, 4, 28, "Finest clipmap level drawn."),
               number("cache_mb", Dimension::None, 1024, 16, 1048576,
                      "Tile cache budget in MiB (render and watch; --cache-mb overrides it). "
                      "It must hold one frame's tiles, about 250 MiB at 25 levels."),
-              wordChoice("vegetation", {"lod", "billboards", "mesh"}, "lod",
-                         "How plants are drawn: ray-cast ellipsoid/line levels of detail with the source "
-                         "mesh for close-ups, billboard clouds (from .plod files built with them), or the "
-                         "source mesh everywhere (slow; a reference)."),
+              wordChoice(
+                  "vegetation", {"lod", "billboards", "mesh"}, "lod",
+                  "How plants are drawn: ray-cast ellipsoid/line levels of detail with the source "
+                  "mesh for close-ups, billboard clouds (from .plod files built with them), or the "
+                  "source mesh everywhere (slow; a reference)."),
               number("vegetation_quality", Dimension::None, 1.0, 0.1, 10.0,
-                     "Divides the error a plant's level of detail may show (metres per pixel): 2 draws "
+                     "Divides the error a plant's level of detail may show (metres per pixel): 2 "
+                     "draws "
                      "finer levels, 0.5 coarser ones."),
               number("vegetation_distance", Dimension::Length, 6000.0, 10.0, 1.0e6,
-                     "Plants farther than this are left to the terrain's colour; nearer ones are drawn "
+                     "Plants farther than this are left to the terrain's colour; nearer ones are "
+                     "drawn "
                      "while they cover at least 1.5 pixels.")}});
     }
     addLanguageSchema(registry);
@@ -287,12 +309,15 @@ SchemaRegistry makeBuiltin() {
 void addImageSourceKinds(SchemaRegistry& registry) {
     const Value grey = color(0.5f, 0.5f, 0.5f);
     registry.add(
-        {"source", "raster", PortType::None,
+        {"source",
+         "raster",
+         PortType::None,
          "Any raster GDAL reads (GeoTIFF/COG, VRT, JPEG2000 where the driver exists, PNG/JPEG "
          "with a world file ...) in any CRS, reprojected on the fly to the longitude/latitude "
          "tile grid: every texel centre is transformed to the file's CRS (exactly, or interpolated "
          "along rows where that is within 0.125 source pixels, like GDAL's approximate "
-         "transformer), the window it spans is read (through the file's overviews, averaged, when a texel covers more than "
+         "transformer), the window it spans is read (through the file's overviews, averaged, when "
+         "a texel covers more than "
          "one pixel) and resampled. Outputs an elevation (one channel, metres; its coverage is "
          "a separate mask that `blend` uses) or an image (linear RGB + alpha = coverage). "
          "Texels outside the file or on no-data have coverage 0. A missing, truncated or "
@@ -332,15 +357,20 @@ void addImageSourceKinds(SchemaRegistry& registry) {
                  "Elevation outside the coverage, in metres.")}});
 
     registry.add(
-        {"source", "constant", PortType::None,
+        {"source",
+         "constant",
+         PortType::None,
          "One height or one colour everywhere, full coverage.",
          {wordChoice("kind", {"elevation", "image"}, "elevation", "Elevation or image output."),
-          number("height", Dimension::Length, 0.0, -1e5, 1e5, "Elevation in metres (kind = elevation)."),
+          number("height", Dimension::Length, 0.0, -1e5, 1e5,
+                 "Elevation in metres (kind = elevation)."),
           simple("color", ValueType::Color, grey,
                  "Colour (sRGB as written, output in linear RGB; its alpha is the alpha).")}});
 
     registry.add(
-        {"source", "adjust", PortType::None,
+        {"source",
+         "adjust",
+         PortType::None,
          "Colour corrections of an image, per texel, applied to sRGB-encoded values in [0, 1] "
          "(as image editors do) in this order: levels (black/white point), gamma, brightness, "
          "contrast about mid grey, saturation and hue (rotation about the grey axis with "
@@ -359,7 +389,9 @@ void addImageSourceKinds(SchemaRegistry& registry) {
           number("white", Dimension::None, 1.0, 0.0, 1.0, "Levels: input value mapped to 1.")}});
 
     registry.add(
-        {"source", "blend", PortType::None,
+        {"source",
+         "blend",
+         PortType::None,
          "Lays `over` on `base`. Weight = opacity x over's coverage (image alpha, or the "
          "coverage of an elevation raster) x mask, where feather > 0 fades the coverage in "
          "over about `feather` metres inside its edge (from the coverage at the pyramid level "
@@ -373,11 +405,14 @@ void addImageSourceKinds(SchemaRegistry& registry) {
           number("opacity", Dimension::Ratio, 1.0, 0.0, 1.0, "Overall weight of `over`."),
           number("feather", Dimension::Length, 0.0, 0.0, 1e7,
                  "Width of the fade inside the edge of over's coverage, in metres."),
-          wordChoice("mode", {"normal", "replace", "multiply", "screen", "add", "min", "max"}, "normal",
+          wordChoice("mode", {"normal", "replace", "multiply", "screen", "add", "min", "max"},
+                     "normal",
                      "How over combines with base (elevation: normal/replace, add, min, max).")}});
 
     registry.add(
-        {"source", "mask", PortType::Mask,
+        {"source",
+         "mask",
+         PortType::Mask,
          "A mask in [0, 1] from one to four inputs: a band expression (e.g. NDVI "
          "`(nir - red) / (nir + red) > 0.35`), or a colour classification (1 where the "
          "texel's nearest class colour is `select`), then morphological open/close and a "
@@ -402,7 +437,8 @@ void addImageSourceKinds(SchemaRegistry& registry) {
                  "Radius of a morphological opening (erode, then dilate): removes specks."),
           number("close", Dimension::Length, 0.0, 0.0, 1e5,
                  "Radius of a morphological closing (dilate, then erode): fills holes."),
-          number("feather", Dimension::Length, 0.0, 0.0, 1e5, "Blur radius of the edges, in metres.")}});
+          number("feather", Dimension::Length, 0.0, 0.0, 1e5,
+                 "Blur radius of the edges, in metres.")}});
 
     // Sources whose output type follows an attribute (checked by the DSL once the whole
     // graph is known).
@@ -420,39 +456,58 @@ AttributeSchema requiredString(std::string name, std::string doc) {
 
 void addVectorSourceKinds(SchemaRegistry& registry) {
     registry.add(
-        {"source", "features", PortType::Features,
-         "Vector features from any OGR data set (Shapefile, GeoJSON, GeoPackage, KML ...) in any CRS: "
+        {"source",
+         "features",
+         PortType::Features,
+         "Vector features from any OGR data set (Shapefile, GeoJSON, GeoPackage, KML ...) in any "
+         "CRS: "
          "one layer, optionally filtered by an OGR SQL attribute filter, reprojected to WGS84 "
-         "longitude/latitude and kept in memory with a spatial index (an STR-packed R-tree), loaded "
-         "once per content on first use. Features crossing the antimeridian stay whole; rings around "
-         "a pole are closed along it. Consumed by rasterize, elevation_edit and plants (features are "
-         "not a terrain layer). An unreadable file, a missing layer, a filter naming a missing field "
+         "longitude/latitude and kept in memory with a spatial index (an STR-packed R-tree), "
+         "loaded "
+         "once per content on first use. Features crossing the antimeridian stay whole; rings "
+         "around "
+         "a pole are closed along it. Consumed by rasterize, elevation_edit and plants (features "
+         "are "
+         "not a terrain layer). An unreadable file, a missing layer, a filter naming a missing "
+         "field "
          "or broken geometry (invalid, empty, unclosed rings; see `invalid`) fail with one message "
          "naming the file, layer, feature or field and the reason.",
          {requiredString("file", "Path of the data set, relative to the project file."),
           simple("layer", ValueType::String, text(""), "Layer name; the first layer when empty."),
           simple("where", ValueType::String, text(""),
-                 "OGR SQL attribute filter, e.g. \"continent = 'South America'\"; every feature when empty."),
-          wordChoice("invalid", {"error", "skip", "repair"}, "error",
-                     "Broken geometry: fail (naming the feature), leave the feature out, or repair it "
-                     "(OGR MakeValid).")}});
+                 "OGR SQL attribute filter, e.g. \"continent = 'South America'\"; every feature "
+                 "when empty."),
+          wordChoice(
+              "invalid", {"error", "skip", "repair"}, "error",
+              "Broken geometry: fail (naming the feature), leave the feature out, or repair it "
+              "(OGR MakeValid).")}});
 
     registry.add(
-        {"source", "rasterize", PortType::None,
-         "Draws features (or plant instances as crown discs) into a mask (coverage in [0, 1]) or an "
-         "image (linear RGB + alpha = coverage), anti-aliased: polygons by exact area coverage, lines, "
-         "outlines and discs by box-filtered cross-sections, with widths in metres on the ellipsoid "
-         "(right at any latitude). Features composite in file order. Colour: `color`, or per feature "
+        {"source",
+         "rasterize",
+         PortType::None,
+         "Draws features (or plant instances as crown discs) into a mask (coverage in [0, 1]) or "
+         "an "
+         "image (linear RGB + alpha = coverage), anti-aliased: polygons by exact area coverage, "
+         "lines, "
+         "outlines and discs by box-filtered cross-sections, with widths in metres on the "
+         "ellipsoid "
+         "(right at any latitude). Features composite in file order. Colour: `color`, or per "
+         "feature "
          "from `color_attribute` as a hex string (\"#1a8c3f\") or through the `colors` mapping. "
-         "Instances: discs of point_radius x instance scale, colour x instance tint, drawn from the "
+         "Instances: discs of point_radius x instance scale, colour x instance tint, drawn from "
+         "the "
          "plants source's minimum level on (coarser tiles stay transparent).",
          {port("features", PortType::Features, false, "Features to draw (or `instances`)."),
-          port("instances", PortType::Instances, false, "Plant instances to draw as discs (or `features`)."),
-          wordChoice("kind", {"image", "mask"}, "image", "Output: an image (colour + alpha) or a mask."),
+          port("instances", PortType::Instances, false,
+               "Plant instances to draw as discs (or `features`)."),
+          wordChoice("kind", {"image", "mask"}, "image",
+                     "Output: an image (colour + alpha) or a mask."),
           simple("fill", ValueType::Bool, boolean(true), "Fill polygons."),
           number("outline", Dimension::Length, 0.0, 0.0, 1e6,
                  "Width of polygon outlines in metres, centred on the boundary; 0: none."),
-          number("line_width", Dimension::Length, 10.0, 0.0, 1e6, "Width of line features in metres."),
+          number("line_width", Dimension::Length, 10.0, 0.0, 1e6,
+                 "Width of line features in metres."),
           number("point_radius", Dimension::Length, 5.0, 0.0, 1e6,
                  "Radius of point features in metres (instances: times their scale)."),
           number("minimum_texels", Dimension::None, 0.0, 0.0, 16.0,
@@ -462,21 +517,28 @@ void addVectorSourceKinds(SchemaRegistry& registry) {
           simple("color_attribute", ValueType::String, text(""),
                  "Attribute giving each feature's colour: a hex string, or a key of `colors`."),
           simple("colors", ValueType::Object, std::nullopt,
-                 "Mapping from attribute values to colours, e.g. { forest = #1a5c2a, water = #1f4e8c }."),
+                 "Mapping from attribute values to colours, e.g. { forest = #1a5c2a, water = "
+                 "#1f4e8c }."),
           number("opacity", Dimension::Ratio, 1.0, 0.0, 1.0, "Scales the coverage.")}});
 
     registry.add(
-        {"source", "elevation_edit", PortType::Elevation,
+        {"source",
+         "elevation_edit",
+         PortType::Elevation,
          "Reshapes an elevation with polygons (dams, embankments, pits, cut slopes): flatten to "
-         "`height`, raise or lower by `amount`, or slope (the plane through the polygon's centroid at "
+         "`height`, raise or lower by `amount`, or slope (the plane through the polygon's centroid "
+         "at "
          "`height` rising with `gradient` towards `direction`). Weight 1 inside, smoothstep over "
-         "`feather` metres outside the boundary (without feather: the texel's exact area coverage); "
-         "h = h0 + w (target - h0), or h0 +- w amount. Values may come per feature from attributes.",
+         "`feather` metres outside the boundary (without feather: the texel's exact area "
+         "coverage); "
+         "h = h0 + w (target - h0), or h0 +- w amount. Values may come per feature from "
+         "attributes.",
          {port("input", PortType::Elevation, true, "The elevation to edit."),
           port("features", PortType::Features, true, "Polygons to apply, in order."),
           wordChoice("mode", {"flatten", "raise", "lower", "slope"}, "flatten", "The edit."),
           number("height", Dimension::Length, 0.0, -1e5, 1e5,
-                 "Target height above the ellipsoid (flatten), or the plane's height at the centroid (slope)."),
+                 "Target height above the ellipsoid (flatten), or the plane's height at the "
+                 "centroid (slope)."),
           number("amount", Dimension::Length, 0.0, 0.0, 1e5, "Height change (raise, lower)."),
           number("gradient", Dimension::Ratio, 0.0, -100.0, 100.0,
                  "Slope of the plane, rise per horizontal distance (slope; 10% = 1 m per 10 m)."),
@@ -490,19 +552,27 @@ void addVectorSourceKinds(SchemaRegistry& registry) {
                  "Attribute with each polygon's amount in metres (raise, lower).")}});
 
     {
-        AttributeSchema scale = listOf("scale", ValueType::Number, Dimension::None, false,
-                                       "[minimum, maximum] of the random uniform scale; default [0.8, 1.2].");
+        AttributeSchema scale =
+            listOf("scale", ValueType::Number, Dimension::None, false,
+                   "[minimum, maximum] of the random uniform scale; default [0.8, 1.2].");
         registry.add(
-            {"source", "plants", PortType::Instances,
+            {"source",
+             "plants",
+             PortType::Instances,
              "Plant instances on the terrain (position, species, scale, rotation, tint) from point "
-             "features and by scattering over a density mask and/or polygons: one candidate per cell of "
-             "a fixed global grid (about 100 m / sqrt(per_hectare) wide), jittered inside the cell shrunk "
+             "features and by scattering over a density mask and/or polygons: one candidate per "
+             "cell of "
+             "a fixed global grid (about 100 m / sqrt(per_hectare) wide), jittered inside the cell "
+             "shrunk "
              "by spacing / 2 so neighbours are never closer than `spacing`, kept with probability "
-             "density x per_hectare x cell area, so counts match the density exactly in expectation. "
-             "Every cell's randomness comes from (seed, cell), so instances are identical whatever the "
+             "density x per_hectare x cell area, so counts match the density exactly in "
+             "expectation. "
+             "Every cell's randomness comes from (seed, cell), so instances are identical whatever "
+             "the "
              "tile, worker count or request order, and each instance belongs to exactly one tile. "
              "Heights come from `elevation`. Species mix by share for scattering; for points from "
-             "`species_attribute` (through `species_map`). Drawn as trees when a scenario lists the "
+             "`species_attribute` (through `species_map`). Drawn as trees when a scenario lists "
+             "the "
              "source in its `layers` (each species with the `models` entry of its name), and as "
              "crown markers by rasterize.",
              {port("elevation", PortType::Elevation, true,
@@ -513,25 +583,31 @@ void addVectorSourceKinds(SchemaRegistry& registry) {
               number("per_hectare", Dimension::None, 100.0, 0.01, 1e4,
                      "Instances per hectare where the density is 1 (inside polygons)."),
               number("spacing", Dimension::Length, 0.0, 0.0, 1e4,
-                     "Minimum distance between scattered instances, in metres (less than the cell size)."),
+                     "Minimum distance between scattered instances, in metres (less than the cell "
+                     "size)."),
               simple("species", ValueType::Object, std::nullopt,
-                     "Species mix for scattering: { name = share, ... }, e.g. { oak = 60%, pine = 40% }."),
+                     "Species mix for scattering: { name = share, ... }, e.g. { oak = 60%, pine = "
+                     "40% }."),
               simple("species_attribute", ValueType::String, text(""),
                      "Points: attribute naming each point's species."),
               simple("species_map", ValueType::Object, std::nullopt,
-                     "Points: attribute value -> species name, e.g. { \"Quercus robur\" = \"oak\" }; a value "
+                     "Points: attribute value -> species name, e.g. { \"Quercus robur\" = \"oak\" "
+                     "}; a value "
                      "not in the map is an error."),
               scale,
-              simple("scale_attribute", ValueType::String, text(""), "Points: attribute with the scale."),
+              simple("scale_attribute", ValueType::String, text(""),
+                     "Points: attribute with the scale."),
               simple("rotation_attribute", ValueType::String, text(""),
-                     "Points: attribute with the rotation in degrees clockwise from north; random otherwise."),
+                     "Points: attribute with the rotation in degrees clockwise from north; random "
+                     "otherwise."),
               number("tint_variation", Dimension::Ratio, 0.1, 0.0, 1.0,
                      "Tint brightness is uniform in [1 - v, 1 + v]."),
               number("seed", Dimension::None, 1, 0, 2147483647, "Random seed of the scattering."),
-              referenceList("models", "source", PortType::PlantModel, false,
-                            "Plant models of the species: [@oak, @palm]; each species is drawn with "
-                            "the plant_model source of the same name (a species without one is an "
-                            "error). Without `models` the plants are markers only.")}});
+              referenceList(
+                  "models", "source", PortType::PlantModel, false,
+                  "Plant models of the species: [@oak, @palm]; each species is drawn with "
+                  "the plant_model source of the same name (a species without one is an "
+                  "error). Without `models` the plants are markers only.")}});
     }
 
     AttributeSchema presetChoice;
@@ -540,11 +616,15 @@ void addVectorSourceKinds(SchemaRegistry& registry) {
     presetChoice.words = PlantGenerator::presetNames();
     presetChoice.doc = "Generated tree: a preset of `sylva plant generate`, e.g. `preset = oak`.";
     registry.add(
-        {"source", "plant_model", PortType::PlantModel,
+        {"source",
+         "plant_model",
+         PortType::PlantModel,
          "One plant species for the vegetation renderer: its mesh and its ellipsoid/line level of "
          "detail (seed 001 ch. 3), built once and cached under $SYLVA_CACHE_DIR (else "
-         "$XDG_CACHE_HOME/sylva or ~/.cache/sylva) as plants/<content hash>.plod. Either a generated "
-         "tree (`preset`, `leaves`, `seed`) or a `file`: a glTF/GLB/OBJ model (imported), or a .plod "
+         "$XDG_CACHE_HOME/sylva or ~/.cache/sylva) as plants/<content hash>.plod. Either a "
+         "generated "
+         "tree (`preset`, `leaves`, `seed`) or a `file`: a glTF/GLB/OBJ model (imported), or a "
+         ".plod "
          "(level of detail only: no close-up mesh). `lod` gives a prebuilt .plod for a model, read "
          "instead of building. Referenced by a plants source's `models`; the species name is the "
          "source name.",
@@ -553,9 +633,10 @@ void addVectorSourceKinds(SchemaRegistry& registry) {
                          "Generated tree: exact number of leaves (default: the preset's own)."),
           number("seed", Dimension::None, 1, 0, 2147483647,
                  "Generated tree: random seed (also seeds the level-of-detail builder)."),
-          simple("file", ValueType::String, std::nullopt,
-                 "Model file (.gltf, .glb, .obj; leaves/branches as in `sylva plant info`) or a .plod "
-                 "(level of detail only), relative to the project file."),
+          simple(
+              "file", ValueType::String, std::nullopt,
+              "Model file (.gltf, .glb, .obj; leaves/branches as in `sylva plant info`) or a .plod "
+              "(level of detail only), relative to the project file."),
           simple("lod", ValueType::String, std::nullopt,
                  "Prebuilt .plod of this model (`sylva plant build`), used instead of building."),
           simple("billboards", ValueType::Bool, boolean(false),

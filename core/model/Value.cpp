@@ -4,12 +4,18 @@ namespace sylva {
 
 const char* dimensionName(Dimension dimension) {
     switch (dimension) {
-        case Dimension::None: return "number";
-        case Dimension::Length: return "length";
-        case Dimension::Angle: return "angle";
-        case Dimension::Time: return "time";
-        case Dimension::Ratio: return "percentage";
-        case Dimension::Pixels: return "pixels";
+        case Dimension::None:
+            return "number";
+        case Dimension::Length:
+            return "length";
+        case Dimension::Angle:
+            return "angle";
+        case Dimension::Time:
+            return "time";
+        case Dimension::Ratio:
+            return "percentage";
+        case Dimension::Pixels:
+            return "pixels";
     }
     return "number";
 }

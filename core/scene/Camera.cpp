@@ -27,8 +27,9 @@ glm::dmat3 axesFromForward(const Geodetic& at, const glm::dvec3& forward, double
 
 glm::dmat3 Camera::axesFromAngles(const Geodetic& at, double heading, double pitch, double roll) {
     const glm::dmat3 frame = Ellipsoid::localFrame(at.latitude, at.longitude);
-    const glm::dvec3 forward = std::cos(pitch) * (std::sin(heading) * frame[0] + std::cos(heading) * frame[1]) +
-                               std::sin(pitch) * frame[2];
+    const glm::dvec3 forward =
+        std::cos(pitch) * (std::sin(heading) * frame[0] + std::cos(heading) * frame[1]) +
+        std::sin(pitch) * frame[2];
     return axesFromForward(at, glm::normalize(forward), roll);
 }
 
@@ -49,7 +50,8 @@ Result<Camera> Camera::fromBlock(const Block& block, const TerrainHeight& terrai
     if (std::optional<double> eyeHeight = reader.optionalNumber("eye_height")) {
         Result<double> ground = terrainHeight(position->latitude, position->longitude);
         if (!ground) {
-            return Error{reader.where("eye_height") + "cannot find the terrain height: " + ground.error().message};
+            return Error{reader.where("eye_height") +
+                         "cannot find the terrain height: " + ground.error().message};
         }
         camera.geodetic.height = ground.value() + *eyeHeight;
     } else if (position->height) {
@@ -77,9 +79,10 @@ Result<Camera> Camera::fromBlock(const Block& block, const TerrainHeight& terrai
         }
         camera.axes = axesLookingAt(camera.geodetic, targetEcef);
     } else {
-        camera.axes = axesFromAngles(camera.geodetic, reader.optionalNumber("heading").value_or(0.0),
-                                     reader.optionalNumber("pitch").value_or(0.0),
-                                     reader.optionalNumber("roll").value_or(0.0));
+        camera.axes =
+            axesFromAngles(camera.geodetic, reader.optionalNumber("heading").value_or(0.0),
+                           reader.optionalNumber("pitch").value_or(0.0),
+                           reader.optionalNumber("roll").value_or(0.0));
     }
     return camera;
 }

@@ -11,7 +11,9 @@ std::int64_t floorDiv(std::int64_t a, std::int64_t b) {
     std::int64_t q = a / b;
     return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
 }
-std::int64_t floorMod(std::int64_t a, std::int64_t b) { return a - floorDiv(a, b) * b; }
+std::int64_t floorMod(std::int64_t a, std::int64_t b) {
+    return a - floorDiv(a, b) * b;
+}
 
 }  // namespace
 
@@ -30,9 +32,12 @@ Clipmap::Clipmap(int levelCount, int size, int channels)
     }
 }
 
-double Clipmap::ringRadius(int level) { return std::ldexp(std::numbers::pi, -level); }
+double Clipmap::ringRadius(int level) {
+    return std::ldexp(std::numbers::pi, -level);
+}
 
-ClipmapWindow Clipmap::windowFor(int level, double latitude, double longitude, int size, int levelOffset) {
+ClipmapWindow Clipmap::windowFor(int level, double latitude, double longitude, int size,
+                                 int levelOffset) {
     SYLVA_CHECK(levelOffset >= 1);
     ClipmapWindow window;
     window.level = std::max(0, level - levelOffset);
@@ -46,7 +51,8 @@ ClipmapWindow Clipmap::windowFor(int level, double latitude, double longitude, i
     if (radius < colatitude && radius < std::numbers::pi - colatitude) {
         const double halfWidth = std::asin(std::min(1.0, std::sin(radius) / std::sin(colatitude)));
         for (int k = 0; k <= window.level + 1; ++k) {
-            const double texelWidth = 2.0 * std::numbers::pi / (double(TileKey::columns(window.level, k)) * size);
+            const double texelWidth =
+                2.0 * std::numbers::pi / (double(TileKey::columns(window.level, k)) * size);
             const double halfSpan = texelWidth * size / 2;
             if (halfSpan >= 1.25 * halfWidth + 2 * texelWidth) {
                 window.lonReduction = k;
@@ -59,7 +65,8 @@ ClipmapWindow Clipmap::windowFor(int level, double latitude, double longitude, i
     double x = (longitude + std::numbers::pi) / texelWidth;
     x -= std::floor(x / double(columns)) * double(columns);
     const auto focusX = static_cast<std::int64_t>(std::floor(x));
-    const auto focusY = static_cast<std::int64_t>(std::floor((std::numbers::pi / 2 - latitude) / texelHeight));
+    const auto focusY =
+        static_cast<std::int64_t>(std::floor((std::numbers::pi / 2 - latitude) / texelHeight));
     window.originX = floorMod(focusX - size / 2, columns);
     window.originY = focusY - size / 2;
     return window;
@@ -95,7 +102,9 @@ const ClipmapWindow& Clipmap::window(int level) const {
     return *levels_.at(level).window;
 }
 
-void Clipmap::invalidate(int level) { levels_.at(level).window.reset(); }
+void Clipmap::invalidate(int level) {
+    levels_.at(level).window.reset();
+}
 
 std::vector<Clipmap::Region> Clipmap::takeDirtyRegions() {
     std::vector<Region> result;
@@ -187,15 +196,18 @@ Status Clipmap::copyRect(int level, const ClipmapWindow& window, std::int64_t x0
                     tileY = rowTile;
                 }
                 const float* source = tile->row(static_cast<int>(sourceRow - rowTile * n));
-                float* target = texels.data() + static_cast<std::size_t>(floorMod(gy, n)) * n * channels_;
+                float* target =
+                    texels.data() + static_cast<std::size_t>(floorMod(gy, n)) * n * channels_;
                 for (std::int64_t gx = px; gx < pxEnd; ++gx) {
                     const std::int64_t ix = floorMod(gx, n);
-                    const float* from = source + (static_cast<std::size_t>(ix) + tile->border()) * channels_;
+                    const float* from =
+                        source + (static_cast<std::size_t>(ix) + tile->border()) * channels_;
                     std::copy(from, from + channels_, target + ix * channels_);
                 }
             }
-            dirty_.push_back({level, static_cast<int>(floorMod(px, n)), static_cast<int>(floorMod(py, n)),
-                              static_cast<int>(pxEnd - px), static_cast<int>(pyEnd - py)});
+            dirty_.push_back({level, static_cast<int>(floorMod(px, n)),
+                              static_cast<int>(floorMod(py, n)), static_cast<int>(pxEnd - px),
+                              static_cast<int>(pyEnd - py)});
             texelsCopied_ += static_cast<std::uint64_t>((pxEnd - px) * (pyEnd - py));
             px = pxEnd;
         }

@@ -13,7 +13,8 @@ ElevationQuery::ElevationQuery(const Source& elevation, TileProvider& provider)
     SYLVA_CHECK(elevation.output() == PortType::Elevation);
 }
 
-Result<double> ElevationQuery::heightAt(double latitude, double longitude, int level, int lonReduction) const {
+Result<double> ElevationQuery::heightAt(double latitude, double longitude, int level,
+                                        int lonReduction) const {
     const double pi = std::numbers::pi;
     const int size = provider_.format().size;
     const int columns = TileKey::columns(level, lonReduction);
@@ -26,7 +27,8 @@ Result<double> ElevationQuery::heightAt(double latitude, double longitude, int l
     const double y = std::clamp((pi / 2 - latitude) / texelHeight, 0.5, double(rows) * size - 0.5);
     const auto tileX = std::min(static_cast<int>(x / size), columns - 1);
     const auto tileY = std::min(static_cast<int>(y / size), rows - 1);
-    Result<TilePointer> tile = provider_.tile(elevation_, TileKey{level, lonReduction, tileX, tileY});
+    Result<TilePointer> tile =
+        provider_.tile(elevation_, TileKey{level, lonReduction, tileX, tileY});
     if (!tile) {
         return tile.error();
     }
@@ -42,8 +44,10 @@ Result<double> ElevationQuery::heightAt(double latitude, double longitude, int l
     return top * (1 - ty) + bottom * ty;
 }
 
-Result<double> ElevationQuery::groundHeight(double latitude, double longitude, int ringLevel) const {
-    const ClipmapWindow window = Clipmap::windowFor(ringLevel, latitude, longitude, provider_.format().size);
+Result<double> ElevationQuery::groundHeight(double latitude, double longitude,
+                                            int ringLevel) const {
+    const ClipmapWindow window =
+        Clipmap::windowFor(ringLevel, latitude, longitude, provider_.format().size);
     return heightAt(latitude, longitude, window.level, window.lonReduction);
 }
 

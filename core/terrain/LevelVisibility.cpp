@@ -11,12 +11,14 @@ namespace sylva {
 double LevelVisibility::horizonViewAngle(double heightAboveEllipsoid, double maxTerrainHeight) {
     const double r = Ellipsoid::kMeanRadius;
     const double h = std::max(heightAboveEllipsoid, 1.0);
-    const double angle = std::acos(r / (r + h)) + std::acos(r / (r + std::max(maxTerrainHeight, 0.0)));
+    const double angle =
+        std::acos(r / (r + h)) + std::acos(r / (r + std::max(maxTerrainHeight, 0.0)));
     return std::min(angle, std::numbers::pi / 2);
 }
 
 double LevelVisibility::pixelViewAngle(double heightAboveTerrain, double verticalFov, int pixels) {
-    const double s = std::max(heightAboveTerrain, 0.01) * 2.0 * std::tan(verticalFov / 2) / std::max(pixels, 1);
+    const double s =
+        std::max(heightAboveTerrain, 0.01) * 2.0 * std::tan(verticalFov / 2) / std::max(pixels, 1);
     return s / Ellipsoid::kMeanRadius;
 }
 

@@ -26,7 +26,8 @@ void TerrainRings::addRows(TerrainMesh& mesh, int firstRow, int lastRow, bool bl
     const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
     const float pi = static_cast<float>(std::numbers::pi);
     for (int row = firstRow; row <= lastRow; ++row) {
-        float angle = static_cast<float>(std::numbers::pi * std::exp2(-double(row) / ringsPerLevel_));
+        float angle =
+            static_cast<float>(std::numbers::pi * std::exp2(-double(row) / ringsPerLevel_));
         // Level borders must be exact powers of two of pi in float: the inner border
         // of level i is then bit-identical to the outer border of level i + 1.
         if (row % ringsPerLevel_ == 0) {

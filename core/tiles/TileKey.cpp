@@ -16,7 +16,9 @@ double TileKey::west() const {
 double TileKey::east() const {
     return -std::numbers::pi + 2.0 * std::numbers::pi * (x + 1) / columns();
 }
-double TileKey::north() const { return std::numbers::pi / 2 - std::numbers::pi * y / rows(); }
+double TileKey::north() const {
+    return std::numbers::pi / 2 - std::numbers::pi * y / rows();
+}
 double TileKey::south() const {
     return std::numbers::pi / 2 - std::numbers::pi * (y + 1) / rows();
 }

@@ -12,10 +12,11 @@ namespace sylva {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kMetresPerRadian = 6367000.0;  // mean meridian radius: distances for selection only
-constexpr int kRefinement = 2;                  // levels finer than the coarse level near the camera
+constexpr double kMetresPerRadian =
+    6367000.0;                  // mean meridian radius: distances for selection only
+constexpr int kRefinement = 2;  // levels finer than the coarse level near the camera
 constexpr int kFinestLevel = 20;
-constexpr std::uint64_t kKeepFrames = 8;        // frames an unused batch is kept
+constexpr std::uint64_t kKeepFrames = 8;  // frames an unused batch is kept
 
 // Approximate ground distance (metres) from a point to a tile's bounds.
 double distanceToTile(double latitude, double longitude, const TileKey& key) {
@@ -41,8 +42,8 @@ void collect(const TileKey& key, double latitude, double longitude, double radiu
     if (key.level < finest && distance < size) {
         for (int dy = 0; dy < 2; ++dy) {
             for (int dx = 0; dx < 2; ++dx) {
-                collect(TileKey{key.level + 1, 0, key.x * 2 + dx, key.y * 2 + dy}, latitude, longitude, radius,
-                        finest, out);
+                collect(TileKey{key.level + 1, 0, key.x * 2 + dx, key.y * 2 + dy}, latitude,
+                        longitude, radius, finest, out);
             }
         }
         return;
@@ -65,13 +66,16 @@ std::vector<TileKey> VegetationStream::tilesAround(double latitude, double longi
     const int finest = std::min(level + kRefinement, kFinestLevel);
     const double tileAngle = kPi / double(TileKey::rows(level));
     const double latitudeRadius = radius / kMetresPerRadian;
-    const double longitudeRadius =
-        std::min(kPi, radius / (kMetresPerRadian * std::max(std::cos(std::min(std::abs(latitude) + latitudeRadius,
-                                                                               kPi / 2 - 1e-6)),
-                                                            1e-6)));
+    const double longitudeRadius = std::min(
+        kPi,
+        radius / (kMetresPerRadian *
+                  std::max(std::cos(std::min(std::abs(latitude) + latitudeRadius, kPi / 2 - 1e-6)),
+                           1e-6)));
     const int rows = TileKey::rows(level), columns = TileKey::columns(level, 0);
-    const int yFirst = std::clamp(int(std::floor((kPi / 2 - (latitude + latitudeRadius)) / tileAngle)), 0, rows - 1);
-    const int yLast = std::clamp(int(std::floor((kPi / 2 - (latitude - latitudeRadius)) / tileAngle)), 0, rows - 1);
+    const int yFirst = std::clamp(
+        int(std::floor((kPi / 2 - (latitude + latitudeRadius)) / tileAngle)), 0, rows - 1);
+    const int yLast = std::clamp(
+        int(std::floor((kPi / 2 - (latitude - latitudeRadius)) / tileAngle)), 0, rows - 1);
     const int span = std::min(columns, int(std::ceil(2 * longitudeRadius / tileAngle)) + 2);
     const int xCentre = int(std::floor((longitude + kPi) / tileAngle));
     for (int y = yFirst; y <= yLast; ++y) {
@@ -85,10 +89,9 @@ std::vector<TileKey> VegetationStream::tilesAround(double latitude, double longi
     return out;
 }
 
-Result<std::vector<const InstanceBatch*>> VegetationStream::update(const std::vector<VegetationStreamLayer>& layers,
-                                                                   TileProvider& provider, const Camera& camera,
-                                                                   const std::vector<SpeciesLod>& species,
-                                                                   const VegetationStreamSettings& settings) {
+Result<std::vector<const InstanceBatch*>> VegetationStream::update(
+    const std::vector<VegetationStreamLayer>& layers, TileProvider& provider, const Camera& camera,
+    const std::vector<SpeciesLod>& species, const VegetationStreamSettings& settings) {
     ++frame_;
     statistics_ = {};
     std::vector<const InstanceBatch*> out;
@@ -100,14 +103,17 @@ Result<std::vector<const InstanceBatch*>> VegetationStream::update(const std::ve
     }
     const double limit = settings.maximumDistance > 0 ? settings.maximumDistance
                                                       : VegetationStreamSettings::kDefaultDistance;
-    const double visible = 2.0 * largest * 1.3 / (std::max(settings.minimumPixels, 0.1) * settings.pixelAngle);
+    const double visible =
+        2.0 * largest * 1.3 / (std::max(settings.minimumPixels, 0.1) * settings.pixelAngle);
     const double distance = std::min(limit, visible);
     statistics_.distance = distance;
     for (const VegetationStreamLayer& layer : layers) {
         const double height = std::max(settings.heightAboveGround, 0.0);
-        const double ground = height < distance ? std::sqrt(distance * distance - height * height) : 0.0;
-        const std::vector<TileKey> keys = tilesAround(camera.geodetic.latitude, camera.geodetic.longitude, ground,
-                                                      layer.source->minimumLevel());
+        const double ground =
+            height < distance ? std::sqrt(distance * distance - height * height) : 0.0;
+        const std::vector<TileKey> keys =
+            tilesAround(camera.geodetic.latitude, camera.geodetic.longitude, ground,
+                        layer.source->minimumLevel());
         statistics_.wantedTiles += keys.size();
         for (const TileKey& key : keys) {
             const auto id = std::make_pair(layer.source, key);
@@ -137,7 +143,8 @@ Result<std::vector<const InstanceBatch*>> VegetationStream::update(const std::ve
                 std::vector<InstancePlacement> placements;
                 placements.reserve(instances.value().size());
                 for (const PlantInstance& instance : instances.value()) {
-                    if (instance.species >= layer.species.size() || layer.species[instance.species] < 0) {
+                    if (instance.species >= layer.species.size() ||
+                        layer.species[instance.species] < 0) {
                         continue;
                     }
                     InstancePlacement p;
@@ -145,7 +152,8 @@ Result<std::vector<const InstanceBatch*>> VegetationStream::update(const std::ve
                     p.longitude = instance.longitude;
                     // Sunk a little: the terrain drawn may sit a few decimetres off the
                     // sampled elevation, and a floating stem is worse than a buried one.
-                    p.baseEcef = Ellipsoid::toEcef({instance.latitude, instance.longitude, instance.height - 0.3});
+                    p.baseEcef = Ellipsoid::toEcef(
+                        {instance.latitude, instance.longitude, instance.height - 0.3});
                     p.heading = instance.rotation;
                     p.scale = instance.scale;
                     p.tint = instance.tint;
@@ -154,9 +162,11 @@ Result<std::vector<const InstanceBatch*>> VegetationStream::update(const std::ve
                 }
                 const double centreLatitude = 0.5 * (key.north() + key.south());
                 const double centreLongitude = 0.5 * (key.west() + key.east());
-                const double originHeight = instances.value().empty() ? 0.0 : instances.value().front().height;
+                const double originHeight =
+                    instances.value().empty() ? 0.0 : instances.value().front().height;
                 auto batch = std::make_shared<InstanceBatch>(LodSelector::makeBatch(
-                    Ellipsoid::toEcef({centreLatitude, centreLongitude, originHeight}), placements, species));
+                    Ellipsoid::toEcef({centreLatitude, centreLongitude, originHeight}), placements,
+                    species));
                 found = batches_.emplace(id, Entry{std::move(batch), 0}).first;
             }
             found->second.lastUsed = frame_;

@@ -52,7 +52,8 @@ Status SceneRenderer::ensureTargets(int width, int height, bool linearOutput) {
         output_.colorCount() == outputs) {
         return Status::success();
     }
-    Result<Framebuffer> gbuffer = Framebuffer::create(width, height, {GL_RGBA16F, GL_RGBA16F}, true);
+    Result<Framebuffer> gbuffer =
+        Framebuffer::create(width, height, {GL_RGBA16F, GL_RGBA16F}, true);
     if (!gbuffer) {
         return gbuffer.error();
     }
@@ -70,24 +71,27 @@ Status SceneRenderer::ensureTargets(int width, int height, bool linearOutput) {
     return Status::success();
 }
 
-Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
-                                    const RenderSettings& settings) {
-    if (settings.width < 1 || settings.height < 1 || settings.width > 16384 || settings.height > 16384) {
-        return Error{"image size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
-                     " is outside 1..16384"};
+Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& provider,
+                                    const Camera& camera, const RenderSettings& settings) {
+    if (settings.width < 1 || settings.height < 1 || settings.width > 16384 ||
+        settings.height > 16384) {
+        return Error{"image size " + std::to_string(settings.width) + "x" +
+                     std::to_string(settings.height) + " is outside 1..16384"};
     }
-    if (Status status = ensureTargets(settings.width, settings.height, settings.linearOutput); !status) {
+    if (Status status = ensureTargets(settings.width, settings.height, settings.linearOutput);
+        !status) {
         return status.error();
     }
     // Height above the terrain at the nadir, from the level that will be drawn there:
     // estimate with a coarse level first, then refine at the finest visible level.
     const ElevationQuery query(*layers.elevation, provider);
-    Result<double> ground = query.groundHeight(camera.geodetic.latitude, camera.geodetic.longitude, 12);
+    Result<double> ground =
+        query.groundHeight(camera.geodetic.latitude, camera.geodetic.longitude, 12);
     if (!ground) {
         return ground.error();
     }
-    LevelRange levels = terrain_->visibleLevels(camera, std::max(camera.geodetic.height - ground.value(), 0.01),
-                                                settings.height);
+    LevelRange levels = terrain_->visibleLevels(
+        camera, std::max(camera.geodetic.height - ground.value(), 0.01), settings.height);
     ground = query.groundHeight(camera.geodetic.latitude, camera.geodetic.longitude, levels.finest);
     if (!ground) {
         return ground.error();
@@ -99,14 +103,16 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     const double aboveTerrain = camera.geodetic.height - groundHeight;
     if (aboveTerrain <= 0.0) {
         char buffer[160];
-        std::snprintf(buffer, sizeof buffer, "the camera is %.2f m below the terrain (ground at %.2f m)",
-                      -aboveTerrain, groundHeight);
+        std::snprintf(buffer, sizeof buffer,
+                      "the camera is %.2f m below the terrain (ground at %.2f m)", -aboveTerrain,
+                      groundHeight);
         return Error{buffer};
     }
     levels = terrain_->visibleLevels(camera, aboveTerrain, settings.height);
     statistics_.heightAboveTerrain = aboveTerrain;
 
-    Result<LevelRange> ready = terrain_->update(layers, provider, camera, levels, std::nullopt, settings.waitForTiles);
+    Result<LevelRange> ready =
+        terrain_->update(layers, provider, camera, levels, std::nullopt, settings.waitForTiles);
     if (!ready) {
         return ready.error();
     }
@@ -114,8 +120,8 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     const auto start = std::chrono::steady_clock::now();
     const double near = std::clamp(0.3 * aboveTerrain, 0.02, 1.0e4);
     near_ = near;
-    const glm::dmat4 projection =
-        SceneRenderer::projection(camera.verticalFov, double(settings.width) / settings.height, near);
+    const glm::dmat4 projection = SceneRenderer::projection(
+        camera.verticalFov, double(settings.width) / settings.height, near);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     gbuffer_.bind();
     gbuffer_.clearColor(0, glm::vec4(0.0f));
@@ -125,7 +131,8 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     terrain_->draw(camera, projection, levels, settings.ocean);
     glFinish();  // only to time the pass; the read-back below waits anyway
     const auto vegetationStart = std::chrono::steady_clock::now();
-    statistics_.terrainPassSeconds = std::chrono::duration<double>(vegetationStart - terrainStart).count();
+    statistics_.terrainPassSeconds =
+        std::chrono::duration<double>(vegetationStart - terrainStart).count();
     statistics_.vegetation = {};
     statistics_.vegetationStream = {};
     statistics_.vegetationPassSeconds = 0;
@@ -143,8 +150,8 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
         stream.maximumDistance = settings.vegetation.maximumDistance;
         stream.heightAboveGround = aboveTerrain;
         stream.wait = settings.waitForTiles;
-        Result<std::vector<const InstanceBatch*>> streamed =
-            vegetationStream_.update(streamLayers.value(), provider, camera, vegetation_->speciesLods(), stream);
+        Result<std::vector<const InstanceBatch*>> streamed = vegetationStream_.update(
+            streamLayers.value(), provider, camera, vegetation_->speciesLods(), stream);
         if (!streamed) {
             Framebuffer::unbind();
             glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
@@ -159,7 +166,8 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
         glFinish();  // only to time the pass
         statistics_.vegetation = vegetation_->statistics();
         statistics_.vegetationPassSeconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - vegetationStart).count();
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - vegetationStart)
+                .count();
     }
     ShadingSettings shading;
     shading.sunDirection = settings.sunDirection;
@@ -176,11 +184,13 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     Framebuffer::unbind();
     glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
     statistics_.terrain = terrain_->statistics();
-    statistics_.gpuSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    statistics_.gpuSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return image;
 }
 
-Result<std::vector<VegetationStreamLayer>> SceneRenderer::vegetationLayers(const TerrainLayers& layers) {
+Result<std::vector<VegetationStreamLayer>> SceneRenderer::vegetationLayers(
+    const TerrainLayers& layers) {
     std::vector<VegetationStreamLayer> out;
     for (const PlantsSource* plants : layers.plants) {
         VegetationStreamLayer layer;

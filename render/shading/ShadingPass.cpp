@@ -7,7 +7,8 @@ namespace sylva::render {
 Result<std::unique_ptr<ShadingPass>> ShadingPass::create(const ShaderLibrary& library) {
     std::unique_ptr<ShadingPass> pass(new ShadingPass());
     Result<ShaderProgram> program = ShaderProgram::create(
-        library, {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "shading/shade.frag"}});
+        library,
+        {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "shading/shade.frag"}});
     if (!program) {
         return program.error();
     }
@@ -31,7 +32,8 @@ void ShadingPass::run(const Framebuffer& gbuffer, const Framebuffer& target, con
     program_.setInt("uAlbedo", 0);
     program_.setInt("uNormal", 1);
     program_.setInt("uDepth", 2);
-    program_.setVec2("uProjectionScale", glm::vec2(float(projection[0][0]), float(projection[1][1])));
+    program_.setVec2("uProjectionScale",
+                     glm::vec2(float(projection[0][0]), float(projection[1][1])));
     program_.setFloat("uNear", float(near));
     program_.setMat3("uViewToEcef", glm::mat3(glm::transpose(view)));
     program_.setVec3("uCameraEcef", glm::vec3(camera.position));

@@ -14,8 +14,9 @@ Result<ClipmapTexture> ClipmapTexture::create(int size, int levels, ClipmapForma
     GLint maxLayers = 0;
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
     if (levels > maxLayers) {
-        return Error{"clipmap texture: " + std::to_string(levels) + " levels exceed the GL limit of " +
-                     std::to_string(maxLayers) + " array layers"};
+        return Error{"clipmap texture: " + std::to_string(levels) +
+                     " levels exceed the GL limit of " + std::to_string(maxLayers) +
+                     " array layers"};
     }
     ClipmapTexture texture;
     texture.size_ = size;
@@ -31,8 +32,8 @@ Result<ClipmapTexture> ClipmapTexture::create(int size, int levels, ClipmapForma
     glTextureParameteri(texture.texture_, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTextureParameteri(texture.texture_, GL_TEXTURE_WRAP_T, GL_REPEAT);
     if (glGetError() != GL_NO_ERROR) {
-        return Error{"clipmap texture: cannot allocate " + std::to_string(size) + "x" + std::to_string(size) +
-                     "x" + std::to_string(levels)};
+        return Error{"clipmap texture: cannot allocate " + std::to_string(size) + "x" +
+                     std::to_string(size) + "x" + std::to_string(levels)};
     }
     return texture;
 }
@@ -46,7 +47,9 @@ ClipmapTexture::~ClipmapTexture() {
     }
 }
 
-ClipmapTexture::ClipmapTexture(ClipmapTexture&& other) noexcept { *this = std::move(other); }
+ClipmapTexture::ClipmapTexture(ClipmapTexture&& other) noexcept {
+    *this = std::move(other);
+}
 
 ClipmapTexture& ClipmapTexture::operator=(ClipmapTexture&& other) noexcept {
     if (this != &other) {
@@ -85,8 +88,8 @@ void ClipmapTexture::upload(const Clipmap& clipmap, const std::vector<Clipmap::R
     }
     // Orphan the previous storage so a transfer still in flight is never waited for.
     glNamedBufferData(pixelBuffer_, GLsizeiptr(total), nullptr, GL_STREAM_DRAW);
-    auto* mapped = static_cast<std::uint8_t*>(
-        glMapNamedBufferRange(pixelBuffer_, 0, GLsizeiptr(total), GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT));
+    auto* mapped = static_cast<std::uint8_t*>(glMapNamedBufferRange(
+        pixelBuffer_, 0, GLsizeiptr(total), GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT));
     SYLVA_CHECK_MESSAGE(mapped != nullptr, "ClipmapTexture: cannot map the pixel buffer");
     std::size_t offset = 0;
     std::vector<std::size_t> offsets;
@@ -95,7 +98,8 @@ void ClipmapTexture::upload(const Clipmap& clipmap, const std::vector<Clipmap::R
         offsets.push_back(offset);
         const std::vector<float>& data = clipmap.data(region.level);
         for (int y = 0; y < region.height; ++y) {
-            const float* source = data.data() + (std::size_t(region.y + y) * size_ + region.x) * channels;
+            const float* source =
+                data.data() + (std::size_t(region.y + y) * size_ + region.x) * channels;
             std::uint8_t* target = mapped + offset + std::size_t(y) * region.width * texelBytes;
             if (!bytes) {
                 std::memcpy(target, source, std::size_t(region.width) * texelBytes);
@@ -105,7 +109,8 @@ void ClipmapTexture::upload(const Clipmap& clipmap, const std::vector<Clipmap::R
                 for (int c = 0; c < 4; ++c) {
                     const float value = c < channels ? source[x * channels + c] : 1.0f;
                     const float encoded = c < 3 ? linearToSrgb(value) : value;
-                    target[x * 4 + c] = static_cast<std::uint8_t>(std::clamp(encoded, 0.0f, 1.0f) * 255.0f + 0.5f);
+                    target[x * 4 + c] =
+                        static_cast<std::uint8_t>(std::clamp(encoded, 0.0f, 1.0f) * 255.0f + 0.5f);
                 }
             }
         }
@@ -116,11 +121,16 @@ void ClipmapTexture::upload(const Clipmap& clipmap, const std::vector<Clipmap::R
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, pixelBuffer_);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    const GLenum layout = bytes ? GL_RGBA : channels == 1 ? GL_RED : channels == 2 ? GL_RG : channels == 3 ? GL_RGB : GL_RGBA;
+    const GLenum layout = bytes           ? GL_RGBA
+                          : channels == 1 ? GL_RED
+                          : channels == 2 ? GL_RG
+                          : channels == 3 ? GL_RGB
+                                          : GL_RGBA;
     const GLenum type = bytes ? GL_UNSIGNED_BYTE : GL_FLOAT;
     for (std::size_t i = 0; i < regions.size(); ++i) {
         const Clipmap::Region& region = regions[i];
-        glTextureSubImage3D(texture_, 0, region.x, region.y, region.level, region.width, region.height, 1, layout, type,
+        glTextureSubImage3D(texture_, 0, region.x, region.y, region.level, region.width,
+                            region.height, 1, layout, type,
                             reinterpret_cast<const void*>(offsets[i]));
     }
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
@@ -128,6 +138,8 @@ void ClipmapTexture::upload(const Clipmap& clipmap, const std::vector<Clipmap::R
     uploadedBytes_ += total;
 }
 
-void ClipmapTexture::bind(int unit) const { glBindTextureUnit(static_cast<GLuint>(unit), texture_); }
+void ClipmapTexture::bind(int unit) const {
+    glBindTextureUnit(static_cast<GLuint>(unit), texture_);
+}
 
 }  // namespace sylva::render

@@ -3,8 +3,8 @@
 #include <glad/gl.h>
 
 #include <chrono>
-#include <map>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -20,19 +20,23 @@ constexpr int kMaxClipmapLevels = 32;  // matches MAX_CLIPMAP_LEVELS in clipmap.
 constexpr int kHeightLevelOffset = 2;
 constexpr int kDetailLevelOffset = 1;
 
-glm::mat3 toFloat(const glm::dmat3& m) { return glm::mat3(m); }
+glm::mat3 toFloat(const glm::dmat3& m) {
+    return glm::mat3(m);
+}
 
 }  // namespace
 
 Result<std::unique_ptr<TerrainRenderer>> TerrainRenderer::create(const ShaderLibrary& library,
                                                                  const TerrainSettings& settings) {
     if (settings.maxLevel < 2 || settings.maxLevel >= kMaxClipmapLevels) {
-        return Error{"terrain: max_level must be within 2.." + std::to_string(kMaxClipmapLevels - 1)};
+        return Error{"terrain: max_level must be within 2.." +
+                     std::to_string(kMaxClipmapLevels - 1)};
     }
     std::unique_ptr<TerrainRenderer> renderer(new TerrainRenderer());
     renderer->settings_ = settings;
     Result<ShaderProgram> program = ShaderProgram::create(
-        library, {{GL_VERTEX_SHADER, "terrain/terrain.vert"}, {GL_FRAGMENT_SHADER, "terrain/terrain.frag"}});
+        library,
+        {{GL_VERTEX_SHADER, "terrain/terrain.vert"}, {GL_FRAGMENT_SHADER, "terrain/terrain.frag"}});
     if (!program) {
         return program.error();
     }
@@ -46,9 +50,12 @@ Result<std::unique_ptr<TerrainRenderer>> TerrainRenderer::create(const ShaderLib
     renderer->height_ = std::make_unique<Clipmap>(levels, settings.clipmapSize, 1);
     renderer->color_ = std::make_unique<Clipmap>(levels, settings.clipmapSize, 4);
     renderer->normals_ = std::make_unique<Clipmap>(levels, settings.clipmapSize, 3);
-    Result<ClipmapTexture> height = ClipmapTexture::create(settings.clipmapSize, levels, ClipmapFormat::Height);
-    Result<ClipmapTexture> color = ClipmapTexture::create(settings.clipmapSize, levels, ClipmapFormat::Color);
-    Result<ClipmapTexture> normals = ClipmapTexture::create(settings.clipmapSize, levels, ClipmapFormat::Normals);
+    Result<ClipmapTexture> height =
+        ClipmapTexture::create(settings.clipmapSize, levels, ClipmapFormat::Height);
+    Result<ClipmapTexture> color =
+        ClipmapTexture::create(settings.clipmapSize, levels, ClipmapFormat::Color);
+    Result<ClipmapTexture> normals =
+        ClipmapTexture::create(settings.clipmapSize, levels, ClipmapFormat::Normals);
     for (const auto* texture : {&height, &color, &normals}) {
         if (!*texture) {
             return texture->error();
@@ -70,9 +77,11 @@ TerrainRenderer::Mesh TerrainRenderer::upload(const TerrainMesh& mesh) {
     glCreateVertexArrays(1, &result.vertexArray);
     glCreateBuffers(1, &result.vertexBuffer);
     glCreateBuffers(1, &result.indexBuffer);
-    glNamedBufferStorage(result.vertexBuffer, GLsizeiptr(mesh.vertices.size() * sizeof(TerrainVertex)),
+    glNamedBufferStorage(result.vertexBuffer,
+                         GLsizeiptr(mesh.vertices.size() * sizeof(TerrainVertex)),
                          mesh.vertices.data(), 0);
-    glNamedBufferStorage(result.indexBuffer, GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
+    glNamedBufferStorage(result.indexBuffer,
+                         GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
                          mesh.indices.data(), 0);
     glVertexArrayVertexBuffer(result.vertexArray, 0, result.vertexBuffer, 0, sizeof(TerrainVertex));
     glVertexArrayElementBuffer(result.vertexArray, result.indexBuffer);
@@ -80,7 +89,8 @@ TerrainRenderer::Mesh TerrainRenderer::upload(const TerrainMesh& mesh) {
     glVertexArrayAttribFormat(result.vertexArray, 0, 4, GL_FLOAT, GL_FALSE, 0);
     glVertexArrayAttribBinding(result.vertexArray, 0, 0);
     glEnableVertexArrayAttrib(result.vertexArray, 1);
-    glVertexArrayAttribFormat(result.vertexArray, 1, 1, GL_FLOAT, GL_FALSE, offsetof(TerrainVertex, seam));
+    glVertexArrayAttribFormat(result.vertexArray, 1, 1, GL_FLOAT, GL_FALSE,
+                              offsetof(TerrainVertex, seam));
     glVertexArrayAttribBinding(result.vertexArray, 1, 0);
     result.indexCount = static_cast<std::int32_t>(mesh.indices.size());
     return result;
@@ -95,15 +105,17 @@ void TerrainRenderer::release(Mesh& mesh) {
     }
 }
 
-LevelRange TerrainRenderer::visibleLevels(const Camera& camera, double heightAboveTerrain, int pixels) const {
-    return LevelVisibility::visibleLevels(camera.geodetic.height, heightAboveTerrain, settings_.maxTerrainHeight,
-                                          camera.verticalFov, pixels, settings_.maxLevel);
+LevelRange TerrainRenderer::visibleLevels(const Camera& camera, double heightAboveTerrain,
+                                          int pixels) const {
+    return LevelVisibility::visibleLevels(camera.geodetic.height, heightAboveTerrain,
+                                          settings_.maxTerrainHeight, camera.verticalFov, pixels,
+                                          settings_.maxLevel);
 }
 
-Result<LevelRange> TerrainRenderer::update(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
-                                           const LevelRange& wanted,
-                                           std::optional<std::chrono::steady_clock::time_point> deadline,
-                                           bool waitForAll) {
+Result<LevelRange> TerrainRenderer::update(
+    const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
+    const LevelRange& wanted, std::optional<std::chrono::steady_clock::time_point> deadline,
+    bool waitForAll) {
     SYLVA_CHECK(layers.elevation != nullptr && layers.normals != nullptr);
     const auto start = std::chrono::steady_clock::now();
     const double latitude = camera.geodetic.latitude;
@@ -129,9 +141,10 @@ Result<LevelRange> TerrainRenderer::update(const TerrainLayers& layers, TileProv
         const Source* source;
         int levelOffset;
     };
-    const Layer layerList[] = {{height_.get(), &heightTexture_, layers.elevation, kHeightLevelOffset},
-                               {normals_.get(), &normalTexture_, layers.normals, kDetailLevelOffset},
-                               {color_.get(), &colorTexture_, layers.color, kDetailLevelOffset}};
+    const Layer layerList[] = {
+        {height_.get(), &heightTexture_, layers.elevation, kHeightLevelOffset},
+        {normals_.get(), &normalTexture_, layers.normals, kDetailLevelOffset},
+        {color_.get(), &colorTexture_, layers.color, kDetailLevelOffset}};
     const int firstLevel = std::max(0, wanted.coarsest - 1);  // the coarser neighbour blends
 
     // Seed 001 Algorithm 3: gather the tiles of every level (coarse before fine by
@@ -147,7 +160,8 @@ Result<LevelRange> TerrainRenderer::update(const TerrainLayers& layers, TileProv
             if (layer.source == nullptr) {
                 continue;
             }
-            const ClipmapWindow window = Clipmap::windowFor(level, latitude, longitude, size, layer.levelOffset);
+            const ClipmapWindow window =
+                Clipmap::windowFor(level, latitude, longitude, size, layer.levelOffset);
             if (layer.clipmap->valid(level) && layer.clipmap->window(level) == window) {
                 continue;
             }
@@ -201,7 +215,8 @@ Result<LevelRange> TerrainRenderer::update(const TerrainLayers& layers, TileProv
             for (const auto& [layer, window] : needed.windows) {
                 const Clipmap::Fetch fetch = [&](const TileKey& key) -> Result<TilePointer> {
                     auto it = ready.find({layer->source->contentHash(), key});
-                    SYLVA_CHECK_MESSAGE(it != ready.end(), "clipmap update outside Clipmap::tilesFor");
+                    SYLVA_CHECK_MESSAGE(it != ready.end(),
+                                        "clipmap update outside Clipmap::tilesFor");
                     return it->second;
                 };
                 status = layer->clipmap->update(level, window, fetch);
@@ -216,8 +231,9 @@ Result<LevelRange> TerrainRenderer::update(const TerrainLayers& layers, TileProv
                 return status.error();
             }
             drawn.finest = level - 1;
-            statistics_.degraded = "level " + std::to_string(level) + " failed, drawing up to level " +
-                                   std::to_string(drawn.finest) + ": " + status.error().message;
+            statistics_.degraded = "level " + std::to_string(level) +
+                                   " failed, drawing up to level " + std::to_string(drawn.finest) +
+                                   ": " + status.error().message;
             break;
         }
         if (pending) {
@@ -233,16 +249,17 @@ Result<LevelRange> TerrainRenderer::update(const TerrainLayers& layers, TileProv
             break;
         }
     }
-    const std::uint64_t uploaded =
-        heightTexture_.uploadedBytes() + normalTexture_.uploadedBytes() + colorTexture_.uploadedBytes();
+    const std::uint64_t uploaded = heightTexture_.uploadedBytes() + normalTexture_.uploadedBytes() +
+                                   colorTexture_.uploadedBytes();
     statistics_.uploadedBytes = uploaded - uploadedBefore_;
     uploadedBefore_ = uploaded;
-    statistics_.updateSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    statistics_.updateSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return drawn;
 }
 
-void TerrainRenderer::draw(const Camera& camera, const glm::dmat4& projection, const LevelRange& levels,
-                           bool ocean) {
+void TerrainRenderer::draw(const Camera& camera, const glm::dmat4& projection,
+                           const LevelRange& levels, bool ocean) {
     const double latitude = camera.geodetic.latitude;
     const double longitude = camera.geodetic.longitude;
     const int size = settings_.clipmapSize;
@@ -253,7 +270,8 @@ void TerrainRenderer::draw(const Camera& camera, const glm::dmat4& projection, c
     const glm::dvec3 ground = Ellipsoid::toEcef({latitude, longitude, 0.0});
 
     program_.use();
-    program_.setVec3("uViewerLatitude", glm::vec3(float(std::sin(latitude)), float(std::cos(latitude)), float(latitude)));
+    program_.setVec3("uViewerLatitude", glm::vec3(float(std::sin(latitude)),
+                                                  float(std::cos(latitude)), float(latitude)));
     program_.setFloat("uBearingSign", latitude >= 0 ? 1.0f : -1.0f);
     program_.setMat3("uMeridianToView", toFloat(view * meridianToEcef));
     program_.setMat3("uEcefToView", toFloat(view));
@@ -281,9 +299,11 @@ void TerrainRenderer::draw(const Camera& camera, const glm::dmat4& projection, c
             double y = (std::numbers::pi / 2 - latitude) / texelHeight;
             x -= std::floor(x / size) * size;
             y -= std::floor(y / size) * size;
-            levelUniforms[level] = glm::vec4(float(1.0 / texelWidth), float(1.0 / texelHeight), float(x), float(y));
+            levelUniforms[level] =
+                glm::vec4(float(1.0 / texelWidth), float(1.0 / texelHeight), float(x), float(y));
         }
-        glProgramUniform4fv(program_.id(), program_.uniformLocation(name), kMaxClipmapLevels, &levelUniforms[0].x);
+        glProgramUniform4fv(program_.id(), program_.uniformLocation(name), kMaxClipmapLevels,
+                            &levelUniforms[0].x);
     }
     heightTexture_.bind(0);
     colorTexture_.bind(1);

@@ -10,8 +10,8 @@
 #include <optional>
 #include <string>
 
-#include "sylva/render/gl/Framebuffer.h"
 #include "ScopedEnv.h"
+#include "sylva/render/gl/Framebuffer.h"
 
 namespace sylva::render {
 namespace {

@@ -11,9 +11,9 @@
 
 #include "sylva/core/base/Hash.h"
 #include "sylva/core/geo/Ellipsoid.h"
-#include "sylva/core/sources/raster/NormalMapSource.h"
 #include "sylva/core/scheduler/Scheduler.h"
 #include "sylva/core/scheduler/TileEvaluator.h"
+#include "sylva/core/sources/raster/NormalMapSource.h"
 #include "sylva/render/gl/GlContext.h"
 #include "sylva/render/scene/SceneRenderer.h"
 

@@ -11,10 +11,10 @@
 #include <optional>
 #include <string>
 
+#include "ScopedEnv.h"
 #include "sylva/render/gl/Framebuffer.h"
 #include "sylva/render/gl/GlContext.h"
 #include "sylva/render/gl/ShaderProgram.h"
-#include "ScopedEnv.h"
 
 namespace sylva::render {
 namespace {

@@ -13,9 +13,9 @@
 
 #include "sylva/core/base/Hash.h"
 #include "sylva/core/geo/Ellipsoid.h"
+#include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/core/sources/raster/NormalMapSource.h"
 #include "sylva/core/terrain/ElevationQuery.h"
-#include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/render/gl/GlContext.h"
 #include "sylva/render/scene/SceneRenderer.h"
 
@@ -35,7 +35,8 @@ double analyticHeight(double latitude, double longitude) {
 
 class AnalyticElevation final : public Source {
 public:
-    explicit AnalyticElevation(double offset = 0.0) : Source("analytic", "test", PortType::Elevation, 1), offset_(offset) {
+    explicit AnalyticElevation(double offset = 0.0)
+        : Source("analytic", "test", PortType::Elevation, 1), offset_(offset) {
         setParameterHash(ContentHash().add(std::string_view("analytic-v1")).add(offset).value());
     }
     Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override {
@@ -43,8 +44,8 @@ public:
         auto tile = std::make_shared<ImageTile>(key, format.size, format.border, 1);
         for (int iy = -format.border; iy < format.size + format.border; ++iy) {
             for (int ix = -format.border; ix < format.size + format.border; ++ix) {
-                tile->at(ix, iy, 0) =
-                    float(analyticHeight(tile->texelLatitude(iy), tile->texelLongitude(ix)) + offset_);
+                tile->at(ix, iy, 0) = float(
+                    analyticHeight(tile->texelLatitude(iy), tile->texelLongitude(ix)) + offset_);
             }
         }
         return TilePointer(tile);
@@ -93,7 +94,8 @@ protected:
         elevation_ = new AnalyticElevation();
         normals_ = new NormalMapSource("analytic.normals", elevation_, 1.0);
         evaluator_ = new TileEvaluator(TileFormat{256, 2});
-        Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(ShaderLibrary(), TerrainSettings{});
+        Result<std::unique_ptr<SceneRenderer>> renderer =
+            SceneRenderer::create(ShaderLibrary(), TerrainSettings{});
         ASSERT_TRUE(renderer) << renderer.error().message;
         renderer_ = renderer.value().release();
     }
@@ -105,7 +107,8 @@ protected:
         delete context_;
     }
 
-    static Camera camera(double latitude, double longitude, double aboveTerrain, double heading, double pitch) {
+    static Camera camera(double latitude, double longitude, double aboveTerrain, double heading,
+                         double pitch) {
         Camera c;
         c.geodetic = {latitude * kDegree, longitude * kDegree,
                       analyticHeight(latitude * kDegree, longitude * kDegree) + aboveTerrain};
@@ -153,7 +156,8 @@ struct DepthReport {
     int silhouetteMisses = 0;
 };
 
-DepthReport compareDepth(const Camera& c, const std::vector<float>& depth, double near, int width, int height) {
+DepthReport compareDepth(const Camera& c, const std::vector<float>& depth, double near, int width,
+                         int height) {
     const double tanHalf = std::tan(c.verticalFov / 2);
     const double aspect = double(width) / height;
     const double maxDistance = 600e3;
@@ -162,9 +166,10 @@ DepthReport compareDepth(const Camera& c, const std::vector<float>& depth, doubl
     std::vector<double> reference(std::size_t(width) * height, -1.0);
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
-            const glm::dvec3 view(((x + 0.5) / width * 2 - 1) * tanHalf * aspect, (1 - (y + 0.5) / height * 2) * tanHalf,
-                                  -1.0);
-            reference[std::size_t(y) * width + x] = rayCast(c.position, c.axes * glm::normalize(view), maxDistance);
+            const glm::dvec3 view(((x + 0.5) / width * 2 - 1) * tanHalf * aspect,
+                                  (1 - (y + 0.5) / height * 2) * tanHalf, -1.0);
+            reference[std::size_t(y) * width + x] =
+                rayCast(c.position, c.axes * glm::normalize(view), maxDistance);
         }
     }
     for (int y = 0; y < height; ++y) {
@@ -180,8 +185,8 @@ DepthReport compareDepth(const Camera& c, const std::vector<float>& depth, doubl
                 ++(interior ? report.holes : report.silhouetteMisses);
                 continue;
             }
-            const glm::dvec3 view(((x + 0.5) / width * 2 - 1) * tanHalf * aspect, (1 - (y + 0.5) / height * 2) * tanHalf,
-                                  -1.0);
+            const glm::dvec3 view(((x + 0.5) / width * 2 - 1) * tanHalf * aspect,
+                                  (1 - (y + 0.5) / height * 2) * tanHalf, -1.0);
             const double rendered = (near / d) / -glm::normalize(view).z;
             errors.push_back(std::abs(rendered - hit) / hit);
         }
@@ -206,15 +211,19 @@ TEST_F(TerrainAccuracy, DepthMatchesARayCastOfTheTrueSurface) {
     };
     constexpr int kWidth = 160, kHeight = 90;
     for (const Case& test : cases) {
-        const Camera c = camera(test.latitude, test.longitude, test.above, test.heading, test.pitch);
+        const Camera c =
+            camera(test.latitude, test.longitude, test.above, test.heading, test.pitch);
         const Image image = render(c, kWidth, kHeight, false);
         ASSERT_FALSE(image.pixels.empty()) << test.name;
-        const DepthReport report = compareDepth(c, renderer_->depth(), renderer_->near(), kWidth, kHeight);
-        std::printf("%-8s median relative depth error %.5f, %d terrain pixels, %d silhouette misses\n", test.name,
-                    report.medianRelativeError, report.referenceHits, report.silhouetteMisses);
+        const DepthReport report =
+            compareDepth(c, renderer_->depth(), renderer_->near(), kWidth, kHeight);
+        std::printf(
+            "%-8s median relative depth error %.5f, %d terrain pixels, %d silhouette misses\n",
+            test.name, report.medianRelativeError, report.referenceHits, report.silhouetteMisses);
         EXPECT_GT(report.referenceHits, kWidth * kHeight / 5) << test.name;
         EXPECT_LE(report.medianRelativeError, 0.005) << test.name;
-        EXPECT_EQ(report.holes, 0) << test.name << ": " << report.holes << " of " << report.referenceHits << " pixels";
+        EXPECT_EQ(report.holes, 0)
+            << test.name << ": " << report.holes << " of " << report.referenceHits << " pixels";
         // At most one pixel row of the silhouette may differ.
         EXPECT_LE(report.silhouetteMisses, kWidth) << test.name;
     }
@@ -238,8 +247,9 @@ TEST_F(TerrainAccuracy, OneCentimetreMoveChangesTheImageOnlySlightly) {
         const char* name;
         double latitude, longitude;
     };
-    for (const Case& test : {Case{"mid-latitude", 45.0, 7.0}, Case{"north pole", 89.9999, 0.0},
-                             Case{"south pole", -89.9999, 123.0}, Case{"antimeridian", -12.0, 179.9999999}}) {
+    for (const Case& test :
+         {Case{"mid-latitude", 45.0, 7.0}, Case{"north pole", 89.9999, 0.0},
+          Case{"south pole", -89.9999, 123.0}, Case{"antimeridian", -12.0, 179.9999999}}) {
         const Camera a = camera(test.latitude, test.longitude, 1.7, 60.0, -8.0);
         Camera b = a;
         b.position += a.axes[0] * 0.01;  // 1 cm to the right
@@ -272,14 +282,17 @@ TEST_F(TerrainAccuracy, OneCentimetreMoveChangesTheImageOnlySlightly) {
 // above ElevationQuery::groundHeight and looking straight down sees the ground at
 // 1.7 m (to a centimetre), anywhere, and the query is close to the true surface.
 TEST_F(TerrainAccuracy, ElevationQueryMatchesTheDrawnGround) {
-    for (const auto& [latitude, longitude] : {std::pair{45.0, 7.0}, std::pair{-33.3, -70.1}, std::pair{89.9999, 10.0},
-                                               std::pair{1.0, 179.99999}}) {
+    for (const auto& [latitude, longitude] :
+         {std::pair{45.0, 7.0}, std::pair{-33.3, -70.1}, std::pair{89.9999, 10.0},
+          std::pair{1.0, 179.99999}}) {
         Camera c = camera(latitude, longitude, 1.7, 0.0, -90.0);
         const ElevationQuery query(*elevation_, *evaluator_);
         const LevelRange levels = renderer_->terrain().visibleLevels(c, 1.7, 90);
-        Result<double> ground = query.groundHeight(c.geodetic.latitude, c.geodetic.longitude, levels.finest);
+        Result<double> ground =
+            query.groundHeight(c.geodetic.latitude, c.geodetic.longitude, levels.finest);
         ASSERT_TRUE(ground) << ground.error().message;
-        EXPECT_NEAR(ground.value(), analyticHeight(c.geodetic.latitude, c.geodetic.longitude), 0.05);
+        EXPECT_NEAR(ground.value(), analyticHeight(c.geodetic.latitude, c.geodetic.longitude),
+                    0.05);
         c.geodetic.height = ground.value() + 1.7;
         c.position = Ellipsoid::toEcef(c.geodetic);
         const Image image = render(c, 160, 90, false);

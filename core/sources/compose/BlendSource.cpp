@@ -5,8 +5,8 @@
 #include <numbers>
 
 #include "sylva/core/base/Hash.h"
-#include "sylva/core/sources/vector/ElevationEditSource.h"
 #include "sylva/core/sources/raster/RasterSource.h"
+#include "sylva/core/sources/vector/ElevationEditSource.h"
 
 namespace sylva {
 namespace {

@@ -1,18 +1,18 @@
 #include "sylva/core/sources/graph/SourceFactory.h"
 
-#include "sylva/core/sources/raster/AdjustSource.h"
 #include "sylva/core/sources/compose/BlendSource.h"
+#include "sylva/core/sources/compose/RasterizeSource.h"
+#include "sylva/core/sources/plants/PlantModelSource.h"
+#include "sylva/core/sources/plants/PlantsSource.h"
+#include "sylva/core/sources/raster/AdjustSource.h"
 #include "sylva/core/sources/raster/ConstantSource.h"
-#include "sylva/core/sources/vector/ElevationEditSource.h"
-#include "sylva/core/sources/vector/FeatureSource.h"
 #include "sylva/core/sources/raster/HypsometricSource.h"
 #include "sylva/core/sources/raster/MaskSource.h"
 #include "sylva/core/sources/raster/NoiseSource.h"
 #include "sylva/core/sources/raster/NormalMapSource.h"
-#include "sylva/core/sources/plants/PlantModelSource.h"
-#include "sylva/core/sources/plants/PlantsSource.h"
 #include "sylva/core/sources/raster/RasterSource.h"
-#include "sylva/core/sources/compose/RasterizeSource.h"
+#include "sylva/core/sources/vector/ElevationEditSource.h"
+#include "sylva/core/sources/vector/FeatureSource.h"
 
 namespace sylva {
 

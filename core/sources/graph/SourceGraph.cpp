@@ -6,18 +6,15 @@
 #include <set>
 
 #include "sylva/core/model/BlockReader.h"
+#include "sylva/core/sources/graph/SourceFactory.h"
 #include "sylva/core/sources/plants/PlantsSource.h"
 #include "sylva/core/sources/raster/NormalMapSource.h"
 #include "sylva/core/sources/raster/RasterSource.h"
-#include "sylva/core/sources/graph/SourceFactory.h"
 
 namespace sylva {
 namespace {
 
 using Resolve = std::function<Result<const Source*>(const BlockReader&, std::string_view, bool)>;
-
-
-
 
 }  // namespace
 
@@ -53,7 +50,8 @@ Result<SourceGraph> SourceGraph::build(const ProjectModel& model) {
         std::optional<std::string> target = reader.reference(attribute);
         if (!target) {
             if (required) {
-                return Error{reader.where(attribute) + "missing input '" + std::string(attribute) + "'"};
+                return Error{reader.where(attribute) + "missing input '" + std::string(attribute) +
+                             "'"};
             }
             return static_cast<const Source*>(nullptr);
         }
@@ -67,7 +65,8 @@ Result<SourceGraph> SourceGraph::build(const ProjectModel& model) {
             return Error{reader.where(attribute) + "unknown source '" + *target + "'"};
         }
         if (visiting.count(*target) != 0) {
-            return Error{reader.where(attribute) + "dependency cycle through source '" + *target + "'"};
+            return Error{reader.where(attribute) + "dependency cycle through source '" + *target +
+                         "'"};
         }
         Result<const Source*> input = create(*it->second);
         if (!input) {
@@ -75,7 +74,8 @@ Result<SourceGraph> SourceGraph::build(const ProjectModel& model) {
         }
         const KindSchema* kind = schema.find("source", reader.block().kind);
         const AttributeSchema* port = kind ? kind->find(attribute) : nullptr;
-        if (port != nullptr && port->port != PortType::None && input.value()->output() != port->port) {
+        if (port != nullptr && port->port != PortType::None &&
+            input.value()->output() != port->port) {
             return Error{reader.where(attribute) + "'" + std::string(attribute) + "' expects " +
                          portTypeName(port->port) + ", but source '" + *target + "' gives " +
                          portTypeName(input.value()->output())};
@@ -95,8 +95,8 @@ Result<SourceGraph> SourceGraph::build(const ProjectModel& model) {
         }
         const SourceCreator creator = findSourceCreator(block.kind);
         if (creator == nullptr) {
-            return Error{block.location.toString() + ": source '" + block.name + "': kind '" + block.kind +
-                         "' has no implementation in this build"};
+            return Error{block.location.toString() + ": source '" + block.name + "': kind '" +
+                         block.kind + "' has no implementation in this build"};
         }
         visiting.insert(block.name);
         const InputResolver input = [&](std::string_view attribute, bool required) {
@@ -133,7 +133,8 @@ Result<SourceGraph> SourceGraph::build(const ProjectModel& model) {
     return graph;
 }
 
-Result<TerrainLayers> SourceGraph::terrainLayers(const ProjectModel& model, std::string_view scenario) {
+Result<TerrainLayers> SourceGraph::terrainLayers(const ProjectModel& model,
+                                                 std::string_view scenario) {
     const Block* block = nullptr;
     if (scenario.empty()) {
         if (model.scenarios.empty()) {
@@ -143,7 +144,8 @@ Result<TerrainLayers> SourceGraph::terrainLayers(const ProjectModel& model, std:
     } else {
         block = model.findScenario(scenario);
         if (block == nullptr) {
-            return Error{model.file.string() + ": no scenario named '" + std::string(scenario) + "'"};
+            return Error{model.file.string() + ": no scenario named '" + std::string(scenario) +
+                         "'"};
         }
     }
     BlockReader reader(*block, SchemaRegistry::builtin().find("scenario"));
@@ -155,9 +157,15 @@ Result<TerrainLayers> SourceGraph::terrainLayers(const ProjectModel& model, std:
         }
         const Source** slot = nullptr;
         switch (source->output()) {
-            case PortType::Elevation: slot = &layers.elevation; break;
-            case PortType::Image: slot = &layers.color; break;
-            case PortType::Normals: slot = &layers.normals; break;
+            case PortType::Elevation:
+                slot = &layers.elevation;
+                break;
+            case PortType::Image:
+                slot = &layers.color;
+                break;
+            case PortType::Normals:
+                slot = &layers.normals;
+                break;
             case PortType::Instances:
                 if (const PlantsSource* plants = PlantsSource::from(source)) {
                     layers.plants.push_back(plants);
@@ -165,9 +173,10 @@ Result<TerrainLayers> SourceGraph::terrainLayers(const ProjectModel& model, std:
                 }
                 [[fallthrough]];
             default:
-                return Error{reader.where("layers") + "source '" + name + "' gives " +
-                             portTypeName(source->output()) +
-                             ", which a scenario cannot draw (elevation, image, normals or plants)"};
+                return Error{
+                    reader.where("layers") + "source '" + name + "' gives " +
+                    portTypeName(source->output()) +
+                    ", which a scenario cannot draw (elevation, image, normals or plants)"};
         }
         if (*slot != nullptr) {
             return Error{reader.where("layers") + "two " + portTypeName(source->output()) +
@@ -177,14 +186,16 @@ Result<TerrainLayers> SourceGraph::terrainLayers(const ProjectModel& model, std:
         *slot = source;
     }
     if (layers.elevation == nullptr) {
-        return Error{reader.where("layers") + "scenario '" + block->name + "' has no elevation layer"};
+        return Error{reader.where("layers") + "scenario '" + block->name +
+                     "' has no elevation layer"};
     }
     if (layers.normals == nullptr) {
         const std::string derivedName = layers.elevation->name() + ".normals";
         if (const Source* existing = find(derivedName)) {
             layers.normals = existing;
         } else {
-            sources_.push_back(std::make_unique<NormalMapSource>(derivedName, layers.elevation, 1.0));
+            sources_.push_back(
+                std::make_unique<NormalMapSource>(derivedName, layers.elevation, 1.0));
             layers.normals = sources_.back().get();
         }
     }
@@ -202,7 +213,8 @@ void collect(const Source& source, std::unordered_set<const Source*>& seen) {
         }
         // A raster's coverage mask is not an input of anything (blend asks for it
         // through BlendSource::coverageOf), but its tiles are live all the same.
-        if (const auto* raster = dynamic_cast<const RasterSource*>(&source); raster && raster->coverage()) {
+        if (const auto* raster = dynamic_cast<const RasterSource*>(&source);
+            raster && raster->coverage()) {
             collect(*raster->coverage(), seen);
         }
     }

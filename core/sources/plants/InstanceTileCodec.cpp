@@ -25,7 +25,8 @@ double getDouble(const float* texel) {
 
 }  // namespace
 
-ImageTile InstanceTileCodec::encode(const TileKey& key, const std::vector<PlantInstance>& instances) {
+ImageTile InstanceTileCodec::encode(const TileKey& key,
+                                    const std::vector<PlantInstance>& instances) {
     SYLVA_CHECK(instances.size() < kMaximumInstances);
     const int size = std::max(1, int(std::ceil(std::sqrt(double(3 * instances.size() + 1)))));
     ImageTile tile(key, size, 0, kChannels);
@@ -49,7 +50,8 @@ ImageTile InstanceTileCodec::encode(const TileKey& key, const std::vector<PlantI
 
 Result<std::vector<PlantInstance>> InstanceTileCodec::decode(const ImageTile& tile) {
     const std::size_t texelCount = std::size_t(tile.stride()) * tile.stride();
-    if (tile.channels() != kChannels || tile.border() != 0 || tile.texels().size() != texelCount * kChannels) {
+    if (tile.channels() != kChannels || tile.border() != 0 ||
+        tile.texels().size() != texelCount * kChannels) {
         return Error{"tile " + tile.key().toString() + " does not hold plant instances"};
     }
     const float* texels = tile.texels().data();

@@ -9,9 +9,9 @@
 
 #include "sylva/core/base/Hash.h"
 #include "sylva/core/geo/Ellipsoid.h"
-#include "sylva/core/sources/vector/CoverageRasterizer.h"
 #include "sylva/core/sources/plants/InstanceTileCodec.h"
 #include "sylva/core/sources/plants/PlantModelSource.h"
+#include "sylva/core/sources/vector/CoverageRasterizer.h"
 
 namespace sylva {
 namespace {
@@ -638,8 +638,9 @@ Result<std::unique_ptr<Source>> PlantsSource::create(const SourceBuildContext& c
         for (const Source* source : models.value()) {
             const PlantModelSource* model = PlantModelSource::from(source);
             if (model == nullptr) {
-                return Error{reader.where("models") + "'models' expects plant_model sources, but '" +
-                             source->name() + "' gives " + portTypeName(source->output())};
+                return Error{reader.where("models") +
+                             "'models' expects plant_model sources, but '" + source->name() +
+                             "' gives " + portTypeName(source->output())};
             }
             byName.push_back(model);
         }

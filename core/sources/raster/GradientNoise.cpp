@@ -5,7 +5,8 @@
 namespace sylva {
 namespace {
 
-inline std::uint32_t hashLattice(std::int64_t x, std::int64_t y, std::int64_t z, std::uint32_t seed) {
+inline std::uint32_t hashLattice(std::int64_t x, std::int64_t y, std::int64_t z,
+                                 std::uint32_t seed) {
     // A 64-bit mix (splitmix64 finaliser) of the three coordinates and the seed.
     std::uint64_t h = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull;
     h ^= static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full;
@@ -22,27 +23,47 @@ inline std::uint32_t hashLattice(std::int64_t x, std::int64_t y, std::int64_t z,
 inline double gradient(std::uint32_t hash, double x, double y, double z) {
     // Perlin's 12 cube-edge directions (16 entries, four repeated).
     switch (hash & 15u) {
-        case 0: return x + y;
-        case 1: return -x + y;
-        case 2: return x - y;
-        case 3: return -x - y;
-        case 4: return x + z;
-        case 5: return -x + z;
-        case 6: return x - z;
-        case 7: return -x - z;
-        case 8: return y + z;
-        case 9: return -y + z;
-        case 10: return y - z;
-        case 11: return -y - z;
-        case 12: return x + y;
-        case 13: return -y + z;
-        case 14: return -x + y;
-        default: return -y - z;
+        case 0:
+            return x + y;
+        case 1:
+            return -x + y;
+        case 2:
+            return x - y;
+        case 3:
+            return -x - y;
+        case 4:
+            return x + z;
+        case 5:
+            return -x + z;
+        case 6:
+            return x - z;
+        case 7:
+            return -x - z;
+        case 8:
+            return y + z;
+        case 9:
+            return -y + z;
+        case 10:
+            return y - z;
+        case 11:
+            return -y - z;
+        case 12:
+            return x + y;
+        case 13:
+            return -y + z;
+        case 14:
+            return -x + y;
+        default:
+            return -y - z;
     }
 }
 
-inline double fade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
-inline double lerp(double a, double b, double t) { return a + t * (b - a); }
+inline double fade(double t) {
+    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+}
+inline double lerp(double a, double b, double t) {
+    return a + t * (b - a);
+}
 
 }  // namespace
 

@@ -27,11 +27,11 @@ double smoothstep(double edge0, double edge1, double x) {
 
 std::vector<HypsometricStop> HypsometricParameters::defaultRamp() {
     return {
-        {0.0, fromSrgb(194, 178, 128)},    // beach sand
-        {30.0, fromSrgb(86, 125, 58)},     // lowland green
-        {500.0, fromSrgb(110, 135, 62)},   // hills
-        {1200.0, fromSrgb(140, 124, 84)},  // dry upland
-        {2200.0, fromSrgb(118, 104, 92)},  // bare mountain
+        {0.0, fromSrgb(194, 178, 128)},     // beach sand
+        {30.0, fromSrgb(86, 125, 58)},      // lowland green
+        {500.0, fromSrgb(110, 135, 62)},    // hills
+        {1200.0, fromSrgb(140, 124, 84)},   // dry upland
+        {2200.0, fromSrgb(118, 104, 92)},   // bare mountain
         {2900.0, fromSrgb(235, 236, 240)},  // snow
     };
 }
@@ -106,23 +106,28 @@ Result<TilePointer> HypsometricSource::produce(const TileKey& key, TileProvider&
             const glm::dvec3 up = Ellipsoid::surfaceNormal(latitude, tile->texelLongitude(ix));
             glm::dvec3 normal;
             if (normals) {
-                normal = glm::dvec3(normals->at(ix, iy, 0), normals->at(ix, iy, 1), normals->at(ix, iy, 2));
+                normal = glm::dvec3(normals->at(ix, iy, 0), normals->at(ix, iy, 1),
+                                    normals->at(ix, iy, 2));
             } else {
                 normal = NormalMapSource::normalAt(h, ix, iy, 1.0);
             }
-            const double slope = std::acos(std::clamp(glm::dot(glm::normalize(normal), up), -1.0, 1.0));
+            const double slope =
+                std::acos(std::clamp(glm::dot(glm::normalize(normal), up), -1.0, 1.0));
             const double elevation = h.at(ix, iy, 0);
             glm::vec3 c = colorAt(elevation, slope);
             // Anti-alias the coastline: where the zero contour passes within half a
             // texel, mix land and water by the texel's signed distance to it (height
             // over the local height change per texel), so filtered tiles show a smooth
             // coast instead of texel steps.
-            const int x0 = std::max(ix - 1, -format.border), x1 = std::min(ix + 1, format.size + format.border - 1);
-            const int y0 = std::max(iy - 1, -format.border), y1 = std::min(iy + 1, format.size + format.border - 1);
+            const int x0 = std::max(ix - 1, -format.border),
+                      x1 = std::min(ix + 1, format.size + format.border - 1);
+            const int y0 = std::max(iy - 1, -format.border),
+                      y1 = std::min(iy + 1, format.size + format.border - 1);
             const double change = std::hypot((h.at(x1, iy, 0) - h.at(x0, iy, 0)) / (x1 - x0),
                                              (h.at(ix, y1, 0) - h.at(ix, y0, 0)) / (y1 - y0));
             if (change > 0.0 && std::abs(elevation) < change) {
-                const float land = static_cast<float>(std::clamp(0.5 + elevation / change, 0.0, 1.0));
+                const float land =
+                    static_cast<float>(std::clamp(0.5 + elevation / change, 0.0, 1.0));
                 c = glm::mix(colorAt(-1e-3, slope), colorAt(1e-3, slope), land);
             }
             tile->at(ix, iy, 0) = c.x;
@@ -135,7 +140,9 @@ Result<TilePointer> HypsometricSource::produce(const TileKey& key, TileProvider&
 }
 
 namespace {
-glm::vec3 linear(const Color& c) { return {srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b)}; }
+glm::vec3 linear(const Color& c) {
+    return {srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b)};
+}
 }  // namespace
 
 Result<std::unique_ptr<Source>> HypsometricSource::create(const SourceBuildContext& context) {
@@ -181,7 +188,8 @@ Result<std::unique_ptr<Source>> HypsometricSource::create(const SourceBuildConte
                 }
             }
             if (stopHeight == nullptr || stopColor == nullptr ||
-                (stopHeight->dimension != Dimension::Length && stopHeight->dimension != Dimension::None)) {
+                (stopHeight->dimension != Dimension::Length &&
+                 stopHeight->dimension != Dimension::None)) {
                 return Error{stop.location.toString() + ": source '" + block.name +
                              "': a ramp stop must be { height = <length>, color = <colour> }"};
             }
@@ -192,8 +200,8 @@ Result<std::unique_ptr<Source>> HypsometricSource::create(const SourceBuildConte
             p.ramp.push_back({stopHeight->value, linear(*stopColor)});
         }
     }
-    return std::unique_ptr<Source>(
-        std::make_unique<HypsometricSource>(block.name, height.value(), normals.value(), std::move(p)));
+    return std::unique_ptr<Source>(std::make_unique<HypsometricSource>(
+        block.name, height.value(), normals.value(), std::move(p)));
 }
 
 }  // namespace sylva

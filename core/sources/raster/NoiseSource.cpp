@@ -36,11 +36,14 @@ double NoiseSource::height(const glm::dvec3& unitDirection, double footprintMetr
     const NoiseParameters& p = parameters_;
     // Fade an octave out between 4 and 2 footprints per wavelength; 0 = skip.
     const auto octaveWeight = [footprintMetres](double wavelength) {
-        return footprintMetres > 0.0 ? std::clamp(std::log2(wavelength / (2.0 * footprintMetres)), 0.0, 1.0) : 1.0;
+        return footprintMetres > 0.0
+                   ? std::clamp(std::log2(wavelength / (2.0 * footprintMetres)), 0.0, 1.0)
+                   : 1.0;
     };
     const auto shift = [](int octave, double phase) {
         // A fixed, irrational shift per octave decorrelates the lattices.
-        return glm::dvec3(0.3183 * octave + 0.11 + phase, 0.5772 * octave + 0.37, 0.7071 * octave + 0.73 - phase);
+        return glm::dvec3(0.3183 * octave + 0.11 + phase, 0.5772 * octave + 0.37,
+                          0.7071 * octave + 0.73 - phase);
     };
 
     double continents = 0.0;
@@ -51,7 +54,9 @@ double NoiseSource::height(const glm::dvec3& unitDirection, double footprintMetr
         if (weight <= 0.0) {
             break;
         }
-        continents += amplitude * weight * noise_(unitDirection * (Ellipsoid::kMeanRadius / wavelength) + shift(octave, 0.0));
+        continents +=
+            amplitude * weight *
+            noise_(unitDirection * (Ellipsoid::kMeanRadius / wavelength) + shift(octave, 0.0));
         amplitude *= p.gain;
         wavelength /= p.lacunarity;
     }
@@ -66,7 +71,8 @@ double NoiseSource::height(const glm::dvec3& unitDirection, double footprintMetr
             if (weight <= 0.0) {
                 break;
             }
-            const double n = noise_(unitDirection * (Ellipsoid::kMeanRadius / wavelength) + shift(octave, 17.0));
+            const double n =
+                noise_(unitDirection * (Ellipsoid::kMeanRadius / wavelength) + shift(octave, 17.0));
             double signal = 1.0 - 2.0 * std::abs(n);  // crest where the noise crosses zero
             signal *= signal * previous;
             previous = std::clamp(0.4 + signal, 0.0, 1.0);
@@ -95,11 +101,13 @@ Result<TilePointer> NoiseSource::produce(const TileKey& key, TileProvider& provi
         const double sinLat = std::sin(latitude);
         // The footprint is the larger side of the texel on the ground.
         const double footprint =
-            Ellipsoid::kMeanRadius * std::max(tile->texelHeight(), tile->texelWidth() * std::abs(cosLat));
+            Ellipsoid::kMeanRadius *
+            std::max(tile->texelHeight(), tile->texelWidth() * std::abs(cosLat));
         float* row = tile->row(iy);
         for (int ix = begin; ix < end; ++ix) {
             const double longitude = tile->texelLongitude(ix);
-            const glm::dvec3 direction(cosLat * std::cos(longitude), cosLat * std::sin(longitude), sinLat);
+            const glm::dvec3 direction(cosLat * std::cos(longitude), cosLat * std::sin(longitude),
+                                       sinLat);
             row[ix - begin] = static_cast<float>(height(direction, footprint));
         }
     });

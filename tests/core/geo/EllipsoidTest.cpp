@@ -1,7 +1,7 @@
 #include "sylva/core/geo/Ellipsoid.h"
 
-#include <GeographicLib/Geocentric.hpp>
 #include <gtest/gtest.h>
+#include <GeographicLib/Geocentric.hpp>
 
 #include <cmath>
 #include <numbers>
@@ -16,7 +16,8 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 TEST(Ellipsoid, ToEcefMatchesGeographicLib) {
     const GeographicLib::Geocentric& reference = GeographicLib::Geocentric::WGS84();
     std::mt19937 random(7);
-    std::uniform_real_distribution<double> latitude(-90, 90), longitude(-180, 180), height(-500, 1e6);
+    std::uniform_real_distribution<double> latitude(-90, 90), longitude(-180, 180),
+        height(-500, 1e6);
     for (int i = 0; i < 2000; ++i) {
         const double lat = latitude(random), lon = longitude(random), h = height(random);
         double x, y, z;
@@ -31,10 +32,11 @@ TEST(Ellipsoid, ToEcefMatchesGeographicLib) {
 TEST(Ellipsoid, ToGeodeticRoundTripsIncludingPolesAndAntimeridian) {
     const GeographicLib::Geocentric& reference = GeographicLib::Geocentric::WGS84();
     std::mt19937 random(11);
-    std::uniform_real_distribution<double> latitude(-90, 90), longitude(-180, 180), height(-1e4, 4e7);
-    std::vector<std::array<double, 3>> points = {{90, 0, 0},       {-90, 0, 1.7},  {0, 180, 8000},
-                                                 {0, -180, 0},     {89.9999, 179.9999, 1.7},
-                                                 {-45, 179.99999, 100}};
+    std::uniform_real_distribution<double> latitude(-90, 90), longitude(-180, 180),
+        height(-1e4, 4e7);
+    std::vector<std::array<double, 3>> points = {
+        {90, 0, 0},           {-90, 0, 1.7}, {0, 180, 8000}, {0, -180, 0}, {89.9999, 179.9999, 1.7},
+        {-45, 179.99999, 100}};
     for (int i = 0; i < 2000; ++i) {
         points.push_back({latitude(random), longitude(random), height(random)});
     }

@@ -13,8 +13,10 @@ TEST(Geodesy, DestinationThenDistanceRoundTrips) {
     for (double bearing : {0.0, 45.0, 170.0, 300.0}) {
         for (double metres : {1.7, 5000.0, 2.5e6}) {
             double latitude = 0, longitude = 0;
-            Geodesy::destination(-8.01 * kDegree, -34.84 * kDegree, bearing * kDegree, metres, latitude, longitude);
-            EXPECT_NEAR(Geodesy::distance(-8.01 * kDegree, -34.84 * kDegree, latitude, longitude), metres, 1e-6);
+            Geodesy::destination(-8.01 * kDegree, -34.84 * kDegree, bearing * kDegree, metres,
+                                 latitude, longitude);
+            EXPECT_NEAR(Geodesy::distance(-8.01 * kDegree, -34.84 * kDegree, latitude, longitude),
+                        metres, 1e-6);
         }
     }
 }

@@ -13,7 +13,8 @@ constexpr double kPi = std::numbers::pi;
 
 // The direct formulas: rotate the hemisphere point into ECEF and convert back with
 // asin/atan2, in long double (seed 001 eqs. 5.2-5.4, written with a bearing).
-MapOffset<long double> direct(long double lat1, long double lon1, long double theta, long double bearing) {
+MapOffset<long double> direct(long double lat1, long double lon1, long double theta,
+                              long double bearing) {
     const long double s1 = std::sin(lat1), c1 = std::cos(lat1);
     const long double sl = std::sin(lon1), cl = std::cos(lon1);
     const long double up[3] = {c1 * cl, c1 * sl, s1};
@@ -33,9 +34,9 @@ TEST(MapTransform, MatchesDirectFormulasAtRandomPointsPolesAndAntimeridian) {
     std::mt19937 random(3);
     std::uniform_real_distribution<double> latitude(-kPi / 2, kPi / 2), longitude(-kPi, kPi),
         bearing(0, 2 * kPi), logTheta(std::log(1e-4), std::log(kPi / 2));
-    std::vector<std::pair<double, double>> viewers = {{kPi / 2 - 1e-9, 0.3}, {-kPi / 2 + 1e-9, -2.0},
-                                                      {0.0, kPi - 1e-9},    {0.5, -kPi + 1e-9},
-                                                      {kPi / 2 - 0.01, 3.0}, {0.0, 0.0}};
+    std::vector<std::pair<double, double>> viewers = {
+        {kPi / 2 - 1e-9, 0.3}, {-kPi / 2 + 1e-9, -2.0}, {0.0, kPi - 1e-9},
+        {0.5, -kPi + 1e-9},    {kPi / 2 - 0.01, 3.0},   {0.0, 0.0}};
     for (int i = 0; i < 200; ++i) {
         viewers.emplace_back(latitude(random), longitude(random));
     }
@@ -49,8 +50,8 @@ TEST(MapTransform, MatchesDirectFormulasAtRandomPointsPolesAndAntimeridian) {
             EXPECT_NEAR(ours.latitude, double(reference.latitude), 1e-12 + 1e-10 * theta);
             // Longitude is undefined at the poles themselves; compare away from them.
             if (std::abs(lat1 + ours.latitude) < kPi / 2 - 1e-6) {
-                EXPECT_NEAR(std::remainder(ours.longitude - double(reference.longitude), 2 * kPi), 0.0,
-                            1e-9)
+                EXPECT_NEAR(std::remainder(ours.longitude - double(reference.longitude), 2 * kPi),
+                            0.0, 1e-9)
                     << lat1 << " " << theta << " " << b;
             }
         }
@@ -81,8 +82,8 @@ TEST(MapTransform, FloatKeepsRelativePrecisionAtWalkingScale) {
 
 TEST(MapTransform, EcefOffsetMatchesDifferenceOfEcefPositions) {
     std::mt19937 random(5);
-    std::uniform_real_distribution<double> latitude(-1.5, 1.5), longitude(-kPi, kPi), delta(-0.3, 0.3),
-        height(-400, 9000);
+    std::uniform_real_distribution<double> latitude(-1.5, 1.5), longitude(-kPi, kPi),
+        delta(-0.3, 0.3), height(-400, 9000);
     for (int i = 0; i < 2000; ++i) {
         const double lat1 = latitude(random), lon1 = longitude(random);
         MapOffset<double> offset{delta(random), delta(random)};
@@ -91,7 +92,8 @@ TEST(MapTransform, EcefOffsetMatchesDifferenceOfEcefPositions) {
         }
         const double h = height(random);
         const glm::dvec3 ours = MapTransform<double>(lat1).ecefOffset(offset, h);
-        const glm::dvec3 p2 = Ellipsoid::toEcef({lat1 + offset.latitude, lon1 + offset.longitude, h});
+        const glm::dvec3 p2 =
+            Ellipsoid::toEcef({lat1 + offset.latitude, lon1 + offset.longitude, h});
         const glm::dvec3 p1 = Ellipsoid::toEcef({lat1, lon1, 0});
         // Rotate the ECEF difference by -lon1 about z into the viewer's meridian frame.
         const glm::dvec3 d = p2 - p1;

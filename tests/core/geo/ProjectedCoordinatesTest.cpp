@@ -1,7 +1,7 @@
 #include "sylva/core/geo/ProjectedCoordinates.h"
 
-#include <GeographicLib/UTMUPS.hpp>
 #include <gtest/gtest.h>
+#include <GeographicLib/UTMUPS.hpp>
 
 #include <numbers>
 

@@ -36,7 +36,9 @@ Block camera(std::vector<std::pair<std::string, Value>> attributes) {
     return block;
 }
 
-Result<double> noTerrain(double, double) { return Error{"no terrain in this test"}; }
+Result<double> noTerrain(double, double) {
+    return Error{"no terrain in this test"};
+}
 
 void expectNear(const glm::dvec3& a, const glm::dvec3& b, double tolerance) {
     EXPECT_NEAR(a.x, b.x, tolerance);
@@ -61,14 +63,16 @@ TEST(Camera, HeadingZeroPitchZeroLooksNorthAlongTheHorizon) {
     expectNear(c.position, Ellipsoid::toEcef({45 * kDegree, 10 * kDegree, 1000.0}), 1e-6);
 
     // heading 90 deg looks east, pitch -90 deg straight down.
-    Result<Camera> east = Camera::fromBlock(
-        camera({{"position", geo(45, 10, 1000.0)}, {"heading", quantity(90 * kDegree, Dimension::Angle)}}),
-        noTerrain);
+    Result<Camera> east =
+        Camera::fromBlock(camera({{"position", geo(45, 10, 1000.0)},
+                                  {"heading", quantity(90 * kDegree, Dimension::Angle)}}),
+                          noTerrain);
     ASSERT_TRUE(east) << east.error().message;
     expectNear(-east->axes[2], frame[0], 1e-12);
-    Result<Camera> down = Camera::fromBlock(
-        camera({{"position", geo(45, 10, 1000.0)}, {"pitch", quantity(-90 * kDegree, Dimension::Angle)}}),
-        noTerrain);
+    Result<Camera> down =
+        Camera::fromBlock(camera({{"position", geo(45, 10, 1000.0)},
+                                  {"pitch", quantity(-90 * kDegree, Dimension::Angle)}}),
+                          noTerrain);
     ASSERT_TRUE(down) << down.error().message;
     expectNear(-down->axes[2], -frame[2], 1e-12);
 }
@@ -83,7 +87,8 @@ TEST(Camera, LookAtPointsAtTheTarget) {
     const glm::dmat3 axes = result->axes;
     EXPECT_NEAR(glm::dot(axes[0], axes[1]), 0.0, 1e-12);
     EXPECT_NEAR(glm::length(axes[0]), 1.0, 1e-12);
-    EXPECT_NEAR(glm::dot(axes[0], Ellipsoid::surfaceNormal(25 * kDegree, 15 * kDegree)), 0.0, 1e-12);
+    EXPECT_NEAR(glm::dot(axes[0], Ellipsoid::surfaceNormal(25 * kDegree, 15 * kDegree)), 0.0,
+                1e-12);
 
     // A target without height stands on the terrain from the callback.
     double asked = 0;
@@ -100,7 +105,8 @@ TEST(Camera, LookAtPointsAtTheTarget) {
 }
 
 TEST(Camera, EyeHeightAddsToTheTerrainHeight) {
-    const Block block = camera({{"position", geo(33.25, 2.25, std::nullopt)}, {"eye_height", quantity(1.7, Dimension::Length)}});
+    const Block block = camera({{"position", geo(33.25, 2.25, std::nullopt)},
+                                {"eye_height", quantity(1.7, Dimension::Length)}});
     double askedLat = 0, askedLon = 0;
     Result<Camera> result = Camera::fromBlock(block, [&](double lat, double lon) -> Result<double> {
         askedLat = lat;
@@ -115,18 +121,23 @@ TEST(Camera, EyeHeightAddsToTheTerrainHeight) {
     // The terrain callback's error is passed on, located at eye_height.
     Result<Camera> failing = Camera::fromBlock(block, noTerrain);
     ASSERT_FALSE(failing);
-    EXPECT_EQ(failing.error().message,
-              "cam.sylva:5:17: camera 'cam': cannot find the terrain height: no terrain in this test");
+    EXPECT_EQ(
+        failing.error().message,
+        "cam.sylva:5:17: camera 'cam': cannot find the terrain height: no terrain in this test");
 }
 
 TEST(Camera, MissingHeightOrPositionIsAnError) {
-    Result<Camera> noHeight = Camera::fromBlock(camera({{"position", geo(10, 10, std::nullopt)}}), noTerrain);
+    Result<Camera> noHeight =
+        Camera::fromBlock(camera({{"position", geo(10, 10, std::nullopt)}}), noTerrain);
     ASSERT_FALSE(noHeight);
     EXPECT_EQ(noHeight.error().message,
-              "cam.sylva:4:17: camera 'cam': the camera needs a height: write geo(lat, lon, height) or set eye_height");
-    Result<Camera> noPosition = Camera::fromBlock(camera({{"fov", quantity(1.0, Dimension::Angle)}}), noTerrain);
+              "cam.sylva:4:17: camera 'cam': the camera needs a height: write geo(lat, lon, "
+              "height) or set eye_height");
+    Result<Camera> noPosition =
+        Camera::fromBlock(camera({{"fov", quantity(1.0, Dimension::Angle)}}), noTerrain);
     ASSERT_FALSE(noPosition);
-    EXPECT_NE(noPosition.error().message.find("cam.sylva:3:8: camera 'cam': missing 'position'"), std::string::npos)
+    EXPECT_NE(noPosition.error().message.find("cam.sylva:3:8: camera 'cam': missing 'position'"),
+              std::string::npos)
         << noPosition.error().message;
 }
 

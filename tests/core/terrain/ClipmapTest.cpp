@@ -49,13 +49,15 @@ TEST(Clipmap, RandomFocusMovesEqualAFullRebuild) {
     for (int move = 0; move < 400; ++move) {
         // Mostly small moves at various scales, sometimes a jump, sometimes to a pole.
         const double scale = std::ldexp(1.0, -int(uniform(random) * 12));
-        latitude = std::clamp(latitude + step(random) * scale * 0.3, -kPi / 2 + 1e-6, kPi / 2 - 1e-6);
+        latitude =
+            std::clamp(latitude + step(random) * scale * 0.3, -kPi / 2 + 1e-6, kPi / 2 - 1e-6);
         longitude = std::remainder(longitude + step(random) * scale, 2 * kPi);
         if (uniform(random) < 0.03) {
             latitude = (uniform(random) < 0.5 ? 1 : -1) * (kPi / 2 - uniform(random) * 0.01);
         }
         for (int level = 0; level < kLevels; ++level) {
-            ASSERT_TRUE(incremental.update(level, Clipmap::windowFor(level, latitude, longitude, kSize), fetch));
+            ASSERT_TRUE(incremental.update(
+                level, Clipmap::windowFor(level, latitude, longitude, kSize), fetch));
         }
         incremental.takeDirtyRegions();
     }
@@ -150,7 +152,8 @@ TEST(Clipmap, WindowCoversTheRingAndWidensTowardsThePoles) {
             const double colatitude = kPi / 2 - latitude;
             if (radius < colatitude) {
                 const double halfWidth = std::asin(std::sin(radius) / std::sin(colatitude));
-                EXPECT_GE(w.texelWidth(kSize) * (kSize / 2 - 1), halfWidth) << level << " " << latitude;
+                EXPECT_GE(w.texelWidth(kSize) * (kSize / 2 - 1), halfWidth)
+                    << level << " " << latitude;
             } else {
                 EXPECT_EQ(w.totalColumns(kSize), kSize) << level << " " << latitude;
             }
@@ -163,7 +166,9 @@ TEST(Clipmap, WindowCoversTheRingAndWidensTowardsThePoles) {
 
 TEST(Clipmap, FailedFetchInvalidatesTheLevel) {
     Clipmap clipmap(4, 16, 1);
-    const auto failing = [](const TileKey&) -> Result<TilePointer> { return Error{"disk on fire"}; };
+    const auto failing = [](const TileKey&) -> Result<TilePointer> {
+        return Error{"disk on fire"};
+    };
     const Status status = clipmap.update(2, Clipmap::windowFor(2, 0, 0, 16), failing);
     ASSERT_FALSE(status);
     EXPECT_EQ(status.error().message, "disk on fire");

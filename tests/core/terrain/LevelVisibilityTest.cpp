@@ -18,8 +18,8 @@ TEST(LevelVisibility, HorizonAngle) {
         EXPECT_NEAR(LevelVisibility::horizonViewAngle(h, 0.0), std::acos(r / (r + h)), 1e-12) << h;
     }
     // Mountains add their own horizon angle.
-    EXPECT_NEAR(LevelVisibility::horizonViewAngle(8e3, 9e3), std::acos(r / (r + 8e3)) + std::acos(r / (r + 9e3)),
-                1e-12);
+    EXPECT_NEAR(LevelVisibility::horizonViewAngle(8e3, 9e3),
+                std::acos(r / (r + 8e3)) + std::acos(r / (r + 9e3)), 1e-12);
     EXPECT_DOUBLE_EQ(LevelVisibility::horizonViewAngle(1e12, 1e12), std::numbers::pi / 2);
 }
 

@@ -8,7 +8,9 @@
 namespace sylva {
 namespace {
 
-bool bitEqual(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool bitEqual(float a, float b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
 TEST(TerrainRings, LevelBordersAreBitIdentical) {
     for (auto [columns, rings] : {std::pair{64, 16}, std::pair{48, 12}, std::pair{8, 3}}) {
@@ -23,16 +25,19 @@ TEST(TerrainRings, LevelBordersAreBitIdentical) {
             const TerrainVertex& inner = ring[std::size_t(rings) * stride + c];
             const TerrainVertex& fillOuter = fill[c];
             EXPECT_TRUE(bitEqual(outer.viewAngle, static_cast<float>(std::numbers::pi)));
-            EXPECT_TRUE(bitEqual(inner.viewAngle, fillOuter.viewAngle)) << columns << "/" << rings << " c " << c;
+            EXPECT_TRUE(bitEqual(inner.viewAngle, fillOuter.viewAngle))
+                << columns << "/" << rings << " c " << c;
             EXPECT_TRUE(bitEqual(inner.viewAngle, outer.viewAngle * 0.5f));
             EXPECT_TRUE(bitEqual(inner.sinBearing, fillOuter.sinBearing));
             EXPECT_TRUE(bitEqual(inner.cosBearing, fillOuter.cosBearing));
             // Fill border rings at each further level are exact halvings too.
-            EXPECT_TRUE(bitEqual(fill[std::size_t(rings) * stride + c].viewAngle, outer.viewAngle * 0.25f));
+            EXPECT_TRUE(
+                bitEqual(fill[std::size_t(rings) * stride + c].viewAngle, outer.viewAngle * 0.25f));
         }
         // View angles decrease monotonically inwards.
         for (int row = 1; row <= rings; ++row) {
-            EXPECT_LT(ring[std::size_t(row) * stride].viewAngle, ring[std::size_t(row - 1) * stride].viewAngle);
+            EXPECT_LT(ring[std::size_t(row) * stride].viewAngle,
+                      ring[std::size_t(row - 1) * stride].viewAngle);
         }
         EXPECT_EQ(fill.back().viewAngle, 0.0f);
     }

@@ -64,7 +64,8 @@ public:
         if (fail_) {
             return Error{"disk on fire"};
         }
-        auto tile = std::make_shared<ImageTile>(key, provider.format().size, provider.format().border, 1);
+        auto tile =
+            std::make_shared<ImageTile>(key, provider.format().size, provider.format().border, 1);
         for (float& t : tile->texels()) {
             t = float(key.x);
         }

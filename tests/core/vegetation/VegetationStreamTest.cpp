@@ -15,11 +15,13 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kDegree = kPi / 180;
 
 bool contains(const TileKey& key, double latitude, double longitude) {
-    return latitude <= key.north() && latitude > key.south() && longitude >= key.west() && longitude < key.east();
+    return latitude <= key.north() && latitude > key.south() && longitude >= key.west() &&
+           longitude < key.east();
 }
 
 void checkCover(double latitude, double longitude, double radius) {
-    const std::vector<TileKey> tiles = VegetationStream::tilesAround(latitude, longitude, radius, 8);
+    const std::vector<TileKey> tiles =
+        VegetationStream::tilesAround(latitude, longitude, radius, 8);
     ASSERT_FALSE(tiles.empty());
     int coarsest = 99, finest = -1;
     for (const TileKey& key : tiles) {
@@ -34,7 +36,8 @@ void checkCover(double latitude, double longitude, double radius) {
         for (int step = 0; step < 36; ++step) {
             const double bearing = step * 10 * kDegree;
             const double pointLatitude = latitude + r * std::cos(bearing) / 6367000.0;
-            double pointLongitude = longitude + r * std::sin(bearing) / (6367000.0 * std::cos(latitude));
+            double pointLongitude =
+                longitude + r * std::sin(bearing) / (6367000.0 * std::cos(latitude));
             if (pointLongitude >= kPi) {
                 pointLongitude -= 2 * kPi;
             } else if (pointLongitude < -kPi) {

@@ -17,9 +17,9 @@
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/model/BlockReader.h"
+#include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/core/terrain/ElevationQuery.h"
 #include "sylva/core/terrain/LevelVisibility.h"
-#include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/dsl/ProjectLoader.h"
 #include "sylva/render/gl/GlContext.h"
 #include "sylva/render/scene/SceneRenderer.h"
@@ -29,7 +29,6 @@ namespace {
 
 constexpr int kWidth = 320;
 constexpr int kHeight = 180;
-
 
 class ProjectGolden : public ::testing::Test {
 protected:
@@ -48,7 +47,8 @@ protected:
         ASSERT_TRUE(layers) << layers.error().message;
         layers_ = layers.value();
         evaluator_ = new TileEvaluator(TileFormat{256, 2});
-        Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(ShaderLibrary(), TerrainSettings{});
+        Result<std::unique_ptr<SceneRenderer>> renderer =
+            SceneRenderer::create(ShaderLibrary(), TerrainSettings{});
         ASSERT_TRUE(renderer) << renderer.error().message;
         renderer_ = renderer.value().release();
     }
@@ -74,11 +74,13 @@ protected:
         const Block* cameraBlock = model_->findCamera(name);
         EXPECT_NE(cameraBlock, nullptr);
         const ElevationQuery query(*layers_.elevation, *evaluator_);
-        Result<Camera> camera = Camera::fromBlock(*cameraBlock, [&](double latitude, double longitude) -> Result<double> {
-            const LevelRange levels = LevelVisibility::visibleLevels(1.7, 1.7, 9000, 1.0, kHeight, 24);
-            Result<double> h = query.groundHeight(latitude, longitude, levels.finest);
-            return h ? Result<double>(std::max(h.value(), 0.0)) : h;
-        });
+        Result<Camera> camera = Camera::fromBlock(
+            *cameraBlock, [&](double latitude, double longitude) -> Result<double> {
+                const LevelRange levels =
+                    LevelVisibility::visibleLevels(1.7, 1.7, 9000, 1.0, kHeight, 24);
+                Result<double> h = query.groundHeight(latitude, longitude, levels.finest);
+                return h ? Result<double>(std::max(h.value(), 0.0)) : h;
+            });
         EXPECT_TRUE(camera) << camera.error().message;
         if (cameraOut) {
             *cameraOut = camera.value();
@@ -114,7 +116,8 @@ protected:
                 const glm::dvec3 direction = glm::normalize(camera.axes * view);
                 // Scale z so the ellipsoid becomes a sphere of radius a.
                 const glm::dvec3 o(camera.position.x, camera.position.y, camera.position.z * a / b);
-                const glm::dvec3 d = glm::normalize(glm::dvec3(direction.x, direction.y, direction.z * a / b));
+                const glm::dvec3 d =
+                    glm::normalize(glm::dvec3(direction.x, direction.y, direction.z * a / b));
                 const double B = glm::dot(o, d);
                 const double C = glm::dot(o, o) - a * a;
                 if (B * B - C > 0 && -B - std::sqrt(B * B - C) > 0) {
@@ -148,7 +151,9 @@ SceneRenderer* ProjectGolden::renderer_ = nullptr;
 
 class DemoGolden : public ProjectGolden {
 protected:
-    static void SetUpTestSuite() { open(std::string(SYLVA_PROJECTS_DIR) + "/demo/demo.sylva", "demo_"); }
+    static void SetUpTestSuite() {
+        open(std::string(SYLVA_PROJECTS_DIR) + "/demo/demo.sylva", "demo_");
+    }
     static void TearDownTestSuite() { close(); }
 };
 
@@ -168,20 +173,44 @@ protected:
     static void TearDownTestSuite() { close(); }
 };
 
-TEST_F(DemoGolden, Space) { checkGolden("space"); }
-TEST_F(DemoGolden, Aircraft) { checkGolden("aircraft"); }
-TEST_F(DemoGolden, Ground) { checkGolden("ground"); }
+TEST_F(DemoGolden, Space) {
+    checkGolden("space");
+}
+TEST_F(DemoGolden, Aircraft) {
+    checkGolden("aircraft");
+}
+TEST_F(DemoGolden, Ground) {
+    checkGolden("ground");
+}
 
-TEST_F(DemoGolden, NoHolesFromSpace) { checkNoHoles("space"); }
-TEST_F(DemoGolden, NoHolesFromTheAircraft) { checkNoHoles("aircraft"); }
+TEST_F(DemoGolden, NoHolesFromSpace) {
+    checkNoHoles("space");
+}
+TEST_F(DemoGolden, NoHolesFromTheAircraft) {
+    checkNoHoles("aircraft");
+}
 
-TEST_F(NorthGolden, NorthPoleGround) { checkGolden("north_pole_ground"); }
-TEST_F(NorthGolden, AntimeridianGround) { checkGolden("antimeridian_ground"); }
-TEST_F(NorthGolden, AntimeridianSpace) { checkGolden("antimeridian_space"); }
-TEST_F(NorthGolden, NoHolesAcrossTheAntimeridian) { checkNoHoles("antimeridian_space"); }
-TEST_F(SouthGolden, SouthPoleGround) { checkGolden("south_pole_ground"); }
-TEST_F(SouthGolden, SouthPoleAircraft) { checkGolden("south_pole_aircraft"); }
-TEST_F(SouthGolden, NoHolesOverTheSouthPole) { checkNoHoles("south_pole_aircraft"); }
+TEST_F(NorthGolden, NorthPoleGround) {
+    checkGolden("north_pole_ground");
+}
+TEST_F(NorthGolden, AntimeridianGround) {
+    checkGolden("antimeridian_ground");
+}
+TEST_F(NorthGolden, AntimeridianSpace) {
+    checkGolden("antimeridian_space");
+}
+TEST_F(NorthGolden, NoHolesAcrossTheAntimeridian) {
+    checkNoHoles("antimeridian_space");
+}
+TEST_F(SouthGolden, SouthPoleGround) {
+    checkGolden("south_pole_ground");
+}
+TEST_F(SouthGolden, SouthPoleAircraft) {
+    checkGolden("south_pole_aircraft");
+}
+TEST_F(SouthGolden, NoHolesOverTheSouthPole) {
+    checkNoHoles("south_pole_aircraft");
+}
 
 }  // namespace
 }  // namespace sylva::render

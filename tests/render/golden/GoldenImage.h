@@ -23,7 +23,8 @@ struct Comparison {
     int maxError = 0;
 };
 
-inline Comparison compareImages(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b,
+inline Comparison compareImages(const std::vector<std::uint8_t>& a,
+                                const std::vector<std::uint8_t>& b,
                                 std::vector<std::uint8_t>* difference) {
     Comparison result;
     double sum = 0;
@@ -50,8 +51,9 @@ inline Comparison compareImages(const std::vector<std::uint8_t>& a, const std::v
 }
 
 // Compares `pixels` (RGBA8, width × height) with tests/render/goldens/<name>.png.
-inline void checkGolden(const std::string& name, int width, int height, const std::vector<std::uint8_t>& pixels,
-                        double rmseLimit = 2.0, int maxLimit = 96) {
+inline void checkGolden(const std::string& name, int width, int height,
+                        const std::vector<std::uint8_t>& pixels, double rmseLimit = 2.0,
+                        int maxLimit = 96) {
     ASSERT_EQ(pixels.size(), std::size_t(width) * height * 4);
     const std::filesystem::path golden =
         std::filesystem::path(SYLVA_TEST_DATA_DIR) / "render" / "goldens" / (name + ".png");
@@ -62,7 +64,8 @@ inline void checkGolden(const std::string& name, int width, int height, const st
         GTEST_SKIP() << "golden image updated: " << golden;
     }
     int goldenWidth = 0, goldenHeight = 0;
-    Result<std::vector<std::uint8_t>> expected = ImageWriter::readRgba8(golden, goldenWidth, goldenHeight);
+    Result<std::vector<std::uint8_t>> expected =
+        ImageWriter::readRgba8(golden, goldenWidth, goldenHeight);
     ASSERT_TRUE(expected) << expected.error().message << " (create it with `make goldens`)";
     ASSERT_EQ(goldenWidth, width);
     ASSERT_EQ(goldenHeight, height);
@@ -74,8 +77,9 @@ inline void checkGolden(const std::string& name, int width, int height, const st
         (void)ImageWriter::writeRgba8(outputs / (name + ".actual.png"), width, height, pixels);
         (void)ImageWriter::writeRgba8(outputs / (name + ".diff.png"), width, height, difference);
     }
-    EXPECT_TRUE(ok) << name << ": RMSE " << c.rmse << " (limit " << rmseLimit << "), max error " << c.maxError
-                    << " (limit " << maxLimit << "); actual and diff written to " << outputs;
+    EXPECT_TRUE(ok) << name << ": RMSE " << c.rmse << " (limit " << rmseLimit << "), max error "
+                    << c.maxError << " (limit " << maxLimit << "); actual and diff written to "
+                    << outputs;
 }
 
 }  // namespace sylva::golden

@@ -16,9 +16,9 @@
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/plantlod/PlantGenerator.h"
 #include "sylva/core/plantlod/PlantLodBuilder.h"
+#include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/core/sources/raster/ConstantSource.h"
 #include "sylva/core/sources/raster/NormalMapSource.h"
-#include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/render/gl/GlContext.h"
 #include "sylva/render/scene/SceneRenderer.h"
 
@@ -39,7 +39,8 @@ protected:
         color_ = new ConstantSource("grass", glm::vec4(0.09f, 0.13f, 0.05f, 1.0f));
         normals_ = new NormalMapSource("flat.normals", elevation_, 1.0);
         evaluator_ = new TileEvaluator(TileFormat{256, 2});
-        Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(ShaderLibrary(), TerrainSettings{});
+        Result<std::unique_ptr<SceneRenderer>> renderer =
+            SceneRenderer::create(ShaderLibrary(), TerrainSettings{});
         ASSERT_TRUE(renderer) << renderer.error().message;
         renderer_ = renderer.value().release();
 
@@ -98,12 +99,14 @@ protected:
         return p;
     }
 
-    static Image render(const Camera& c, int width, int height, const std::vector<const InstanceBatch*>& batches,
+    static Image render(const Camera& c, int width, int height,
+                        const std::vector<const InstanceBatch*>& batches,
                         const VegetationSettings& vegetation) {
         RenderSettings settings;
         settings.width = width;
         settings.height = height;
-        settings.sunDirection = glm::normalize(Ellipsoid::surfaceNormal(kLatitude - 0.4, kLongitude - 0.5));
+        settings.sunDirection =
+            glm::normalize(Ellipsoid::surfaceNormal(kLatitude - 0.4, kLongitude - 0.5));
         settings.atmosphere = true;
         settings.ocean = false;
         settings.vegetation = vegetation;
@@ -145,7 +148,8 @@ TEST_F(VegetationGolden, OneTreeAtFourDistancesMeshLodAndBillboards) {
     constexpr int kTile = 160, kTileHeight = 120;
     const double distances[4] = {30.0, 70.0, 160.0, 420.0};
     std::vector<std::uint8_t> sheet(std::size_t(kTile) * 4 * kTileHeight * 3 * 4, 0);
-    const VegetationMethod methods[3] = {VegetationMethod::Mesh, VegetationMethod::Lod, VegetationMethod::Billboard};
+    const VegetationMethod methods[3] = {VegetationMethod::Mesh, VegetationMethod::Lod,
+                                         VegetationMethod::Billboard};
     for (int column = 0; column < 4; ++column) {
         const Camera c = camera(distances[column], 4.0, 6.0 * kDegree, 40.0 * kDegree);
         for (int row = 0; row < 3; ++row) {
@@ -168,12 +172,13 @@ TEST_F(VegetationGolden, ForestFromAbove) {
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     std::vector<InstancePlacement> placements;
     for (int i = 0; i < 250; ++i) {
-        InstancePlacement p = placement(offset(random), offset(random), unit(random) * 6.28f, 0.8f + 0.4f * unit(random));
+        InstancePlacement p = placement(offset(random), offset(random), unit(random) * 6.28f,
+                                        0.8f + 0.4f * unit(random));
         p.tint = glm::vec3(0.9f + 0.2f * unit(random));
         placements.push_back(p);
     }
-    const InstanceBatch batch =
-        LodSelector::makeBatch(placement(0, 0, 0, 1).baseEcef, placements, renderer_->vegetation().speciesLods());
+    const InstanceBatch batch = LodSelector::makeBatch(placement(0, 0, 0, 1).baseEcef, placements,
+                                                       renderer_->vegetation().speciesLods());
     const Camera c = camera(110.0, 120.0, -45.0 * kDegree, 50.0 * kDegree);
     const Image image = render(c, 320, 180, {&batch}, VegetationSettings{});
     golden::checkGolden("vegetation_forest_above", 320, 180, image.pixels);
@@ -233,8 +238,9 @@ TEST_F(VegetationGolden, SlowDollyHasNoPopping) {
     };
     const double faded = worstPop(VegetationSettings{}.transitionBand);
     const double unfaded = worstPop(1e-4);
-    std::printf("dolly: largest spike of the unexplained per-frame change: %.2f with fades, %.2f without\n",
-                faded, unfaded);
+    std::printf(
+        "dolly: largest spike of the unexplained per-frame change: %.2f with fades, %.2f without\n",
+        faded, unfaded);
     EXPECT_LT(faded, 1.5);
     EXPECT_GT(unfaded, 2.0 * faded) << "the measure no longer sees level switches";
 }

@@ -18,11 +18,11 @@ namespace sylva::bench {
 struct TerrainBenchmarkOptions {
     int width = 1280;
     int height = 720;
-    int demSamples = 4096;        // per side of the base DEM
-    double demDegrees = 4.0;      // side of the DEM, degrees of latitude and longitude
-    int framesPerSegment = 6;     // frames between successive altitudes of the flight
-    int bruteForceFrames = 5;     // brute-force frames sampled along the flight
-    std::string framesFolder;     // if set, each clipmap frame is written there as flight_NNN.png
+    int demSamples = 4096;     // per side of the base DEM
+    double demDegrees = 4.0;   // side of the DEM, degrees of latitude and longitude
+    int framesPerSegment = 6;  // frames between successive altitudes of the flight
+    int bruteForceFrames = 5;  // brute-force frames sampled along the flight
+    std::string framesFolder;  // if set, each clipmap frame is written there as flight_NNN.png
     // Frames wait until every level's tiles are ready (as batch rendering does); the
     // default draws the levels that are ready while the Scheduler's workers produce
     // the rest (seed 001 §4.7), as an interactive viewer would.
@@ -32,7 +32,8 @@ struct TerrainBenchmarkOptions {
 
 struct TerrainBenchmarkResult {
     std::map<std::string, double> metrics;
-    std::vector<std::pair<double, std::pair<int, int>>> levelsPerAltitude;  // altitude -> (coarsest, finest)
+    std::vector<std::pair<double, std::pair<int, int>>>
+        levelsPerAltitude;     // altitude -> (coarsest, finest)
     std::string json() const;  // {"suite":"terrain","metrics":{...},"levels_rendered":[...]}
 };
 

@@ -13,10 +13,10 @@
 #include <ogr_srs_api.h>
 #include <unistd.h>
 
-#include "sylva/core/sources/raster/ConstantSource.h"
-#include "sylva/core/sources/GdalDatasetPool.h"
-#include "sylva/core/sources/raster/RasterSource.h"
 #include "sylva/core/scheduler/TileEvaluator.h"
+#include "sylva/core/sources/GdalDatasetPool.h"
+#include "sylva/core/sources/raster/ConstantSource.h"
+#include "sylva/core/sources/raster/RasterSource.h"
 
 namespace sylva {
 namespace {

@@ -14,8 +14,8 @@
 #include <numbers>
 
 #include "sylva/core/geo/Geodesy.h"
-#include "sylva/core/sources/vector/CoverageRasterizer.h"
 #include "sylva/core/scheduler/TileEvaluator.h"
+#include "sylva/core/sources/vector/CoverageRasterizer.h"
 
 namespace sylva {
 namespace {

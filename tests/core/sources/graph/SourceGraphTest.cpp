@@ -9,7 +9,9 @@ namespace {
 
 const auto kFile = std::make_shared<const std::string>("hand.sylva");
 
-SourceLocation at(std::uint32_t line, std::uint32_t column) { return {kFile, line, column, 1}; }
+SourceLocation at(std::uint32_t line, std::uint32_t column) {
+    return {kFile, line, column, 1};
+}
 
 Value reference(std::string name, SourceLocation location) {
     Value v;
@@ -28,7 +30,8 @@ Block source(std::string name, std::string kind, std::uint32_t line) {
 }
 
 void addReference(Block& block, std::string attribute, std::string target, std::uint32_t line) {
-    block.attributes.push_back({std::move(attribute), reference(std::move(target), at(line, 5)), at(line, 5)});
+    block.attributes.push_back(
+        {std::move(attribute), reference(std::move(target), at(line, 5)), at(line, 5)});
 }
 
 ProjectModel demoModel() {
@@ -76,7 +79,8 @@ TEST(SourceGraph, UnknownKindIsLocated) {
     model.sources.push_back(source("odd", "normal_mapp", 9));
     Result<SourceGraph> graph = SourceGraph::build(model);
     ASSERT_FALSE(graph);
-    EXPECT_EQ(graph.error().message, "hand.sylva:9:8: source 'odd': unknown source kind 'normal_mapp'");
+    EXPECT_EQ(graph.error().message,
+              "hand.sylva:9:8: source 'odd': unknown source kind 'normal_mapp'");
 }
 
 TEST(SourceGraph, MissingInputIsLocated) {
@@ -85,9 +89,11 @@ TEST(SourceGraph, MissingInputIsLocated) {
     model.sources.push_back(source("normals", "normal_map", 4));
     Result<SourceGraph> graph = SourceGraph::build(model);
     ASSERT_FALSE(graph);
-    EXPECT_NE(graph.error().message.find("hand.sylva:4:8"), std::string::npos) << graph.error().message;
+    EXPECT_NE(graph.error().message.find("hand.sylva:4:8"), std::string::npos)
+        << graph.error().message;
     EXPECT_NE(graph.error().message.find("'normals'"), std::string::npos) << graph.error().message;
-    EXPECT_NE(graph.error().message.find("missing input 'height'"), std::string::npos) << graph.error().message;
+    EXPECT_NE(graph.error().message.find("missing input 'height'"), std::string::npos)
+        << graph.error().message;
 }
 
 TEST(SourceGraph, UnknownInputIsLocated) {
@@ -109,7 +115,8 @@ TEST(SourceGraph, WrongPortTypeIsLocated) {
     Result<SourceGraph> graph = SourceGraph::build(model);
     ASSERT_FALSE(graph);
     EXPECT_EQ(graph.error().message,
-              "hand.sylva:11:5: source 'shade': 'height' expects elevation, but source 'colour' gives image");
+              "hand.sylva:11:5: source 'shade': 'height' expects elevation, but source 'colour' "
+              "gives image");
 }
 
 TEST(SourceGraph, CycleIsLocated) {

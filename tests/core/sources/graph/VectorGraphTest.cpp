@@ -4,8 +4,8 @@
 
 #include <memory>
 
-#include "sylva/core/sources/plants/PlantsSource.h"
 #include "sylva/core/sources/graph/SourceGraph.h"
+#include "sylva/core/sources/plants/PlantsSource.h"
 
 namespace sylva {
 namespace {
@@ -71,10 +71,9 @@ TEST(VectorGraph, BuildsAndChecksInputs) {
 
     Result<SourceGraph> wrong = SourceGraph::build(model(true, false));
     ASSERT_FALSE(wrong);
-    EXPECT_EQ(
-        wrong.error().message,
-        "vector.sylva:4:5: source 'trees': 'elevation' expects elevation, but source 'world' "
-        "gives features");
+    EXPECT_EQ(wrong.error().message,
+              "vector.sylva:4:5: source 'trees': 'elevation' expects elevation, but source 'world' "
+              "gives features");
 
     Result<SourceGraph> both = SourceGraph::build(model(false, true));
     ASSERT_FALSE(both);

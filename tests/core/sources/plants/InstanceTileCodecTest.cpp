@@ -34,8 +34,10 @@ TEST(InstanceTileCodec, RoundTripIsBitExact) {
     for (std::size_t i = 0; i < instances.size(); ++i) {
         const PlantInstance& a = instances[i];
         const PlantInstance& b = decoded.value()[i];
-        EXPECT_EQ(std::bit_cast<std::uint64_t>(a.longitude), std::bit_cast<std::uint64_t>(b.longitude));
-        EXPECT_EQ(std::bit_cast<std::uint64_t>(a.latitude), std::bit_cast<std::uint64_t>(b.latitude));
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(a.longitude),
+                  std::bit_cast<std::uint64_t>(b.longitude));
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(a.latitude),
+                  std::bit_cast<std::uint64_t>(b.latitude));
         EXPECT_EQ(std::bit_cast<std::uint64_t>(a.height), std::bit_cast<std::uint64_t>(b.height));
         EXPECT_EQ(a.species, b.species);
         EXPECT_EQ(a.scale, b.scale);
@@ -43,12 +45,14 @@ TEST(InstanceTileCodec, RoundTripIsBitExact) {
         EXPECT_EQ(a.tint, b.tint);
     }
     // The cache budget sees the bytes: one texel per instance plus the count.
-    EXPECT_GE(tile.bytes(), (instances.size() * InstanceTileCodec::kFloatsPerInstance + 4) * sizeof(float));
+    EXPECT_GE(tile.bytes(),
+              (instances.size() * InstanceTileCodec::kFloatsPerInstance + 4) * sizeof(float));
 }
 
 TEST(InstanceTileCodec, EmptyTileAndForeignLayout) {
     const TileKey key{12, 0, 5, 6};
-    Result<std::vector<PlantInstance>> empty = InstanceTileCodec::decode(InstanceTileCodec::encode(key, {}));
+    Result<std::vector<PlantInstance>> empty =
+        InstanceTileCodec::decode(InstanceTileCodec::encode(key, {}));
     ASSERT_TRUE(empty);
     EXPECT_TRUE(empty.value().empty());
     const ImageTile colour(key, 8, 2, 3);

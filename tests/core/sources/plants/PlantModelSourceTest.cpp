@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "sylva/core/plantlod/PlodFile.h"
-#include "sylva/core/sources/plants/PlantsSource.h"
 #include "sylva/core/sources/graph/SourceGraph.h"
+#include "sylva/core/sources/plants/PlantsSource.h"
 
 namespace sylva {
 namespace {

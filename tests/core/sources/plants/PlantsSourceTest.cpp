@@ -17,10 +17,10 @@
 
 #include <unistd.h>
 
+#include "sylva/core/scheduler/TileEvaluator.h"
+#include "sylva/core/sources/compose/RasterizeSource.h"
 #include "sylva/core/sources/raster/ConstantSource.h"
 #include "sylva/core/sources/vector/CoverageRasterizer.h"
-#include "sylva/core/sources/compose/RasterizeSource.h"
-#include "sylva/core/scheduler/TileEvaluator.h"
 
 namespace sylva {
 namespace {

@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "sylva/core/image/ColorSpace.h"
-#include "sylva/core/sources/raster/ConstantSource.h"
 #include "sylva/core/scheduler/TileEvaluator.h"
+#include "sylva/core/sources/raster/ConstantSource.h"
 
 namespace sylva {
 namespace {

@@ -10,9 +10,9 @@
 #include <gdal.h>
 #include <ogr_srs_api.h>
 
+#include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/core/sources/raster/ConstantSource.h"
 #include "sylva/core/sources/raster/RasterSource.h"
-#include "sylva/core/scheduler/TileEvaluator.h"
 
 namespace sylva {
 namespace {

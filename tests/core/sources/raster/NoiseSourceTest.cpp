@@ -15,7 +15,8 @@ namespace {
 constexpr double kDegree = std::numbers::pi / 180.0;
 
 glm::dvec3 direction(double latitude, double longitude) {
-    return {std::cos(latitude) * std::cos(longitude), std::cos(latitude) * std::sin(longitude), std::sin(latitude)};
+    return {std::cos(latitude) * std::cos(longitude), std::cos(latitude) * std::sin(longitude),
+            std::sin(latitude)};
 }
 
 TilePointer produce(const Source& source, const TileKey& key, TileFormat format = {16, 2}) {
@@ -50,7 +51,8 @@ TEST(NoiseSource, SeamlessAcrossTheAntimeridian) {
         for (int iy = -last->border(); iy < size + last->border(); ++iy) {
             for (int b = 0; b < last->border(); ++b) {
                 // East border texel size + b of the last column is texel b of column 0.
-                EXPECT_NEAR(last->at(size + b, iy, 0), first->at(b, iy, 0), 1e-3) << "row " << y << " iy " << iy;
+                EXPECT_NEAR(last->at(size + b, iy, 0), first->at(b, iy, 0), 1e-3)
+                    << "row " << y << " iy " << iy;
                 // And the other way round: west border of column 0.
                 EXPECT_NEAR(first->at(-1 - b, iy, 0), last->at(size - 1 - b, iy, 0), 1e-3)
                     << "row " << y << " iy " << iy;
@@ -129,7 +131,8 @@ TEST(NoiseSource, CoarseLevelsDifferByLessThanTheRemovedOctaves) {
     for (int iy = 0; iy < finer->size(); ++iy) {
         for (int ix = 0; ix < finer->size(); ++ix) {
             const glm::dvec3 d = direction(finer->texelLatitude(iy), finer->texelLongitude(ix));
-            largestFiner = std::max(largestFiner, std::abs(finer->at(ix, iy, 0) - source.height(d, 0.0)));
+            largestFiner =
+                std::max(largestFiner, std::abs(finer->at(ix, iy, 0) - source.height(d, 0.0)));
         }
     }
     EXPECT_LT(largestFiner, largest);
@@ -142,12 +145,24 @@ TEST(NoiseSource, ContentHashFollowsParameters) {
     for (int which = 0; which < 6; ++which) {
         NoiseParameters p = base;
         switch (which) {
-            case 0: p.seed = 2; break;
-            case 1: p.amplitude = 2501; break;
-            case 2: p.octaves = 12; break;
-            case 3: p.ridges = 0.25; break;
-            case 4: p.offset = -10; break;
-            case 5: p.roughness = 0.5; break;
+            case 0:
+                p.seed = 2;
+                break;
+            case 1:
+                p.amplitude = 2501;
+                break;
+            case 2:
+                p.octaves = 12;
+                break;
+            case 3:
+                p.ridges = 0.25;
+                break;
+            case 4:
+                p.offset = -10;
+                break;
+            case 5:
+                p.roughness = 0.5;
+                break;
         }
         EXPECT_NE(NoiseSource("c", p).contentHash(), a.contentHash()) << "parameter " << which;
     }

@@ -20,9 +20,9 @@
 #include <unistd.h>
 
 #include "sylva/core/image/ColorSpace.h"
+#include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/core/sources/GdalDatasetPool.h"
 #include "sylva/core/sources/graph/SourceGraph.h"
-#include "sylva/core/scheduler/TileEvaluator.h"
 
 namespace sylva {
 namespace {
@@ -689,7 +689,8 @@ TEST(RasterSource, CreateResolvesPathsAgainstTheProjectFolder) {
     ASSERT_EQ(files.size(), 1u);
     EXPECT_EQ(files[0].filename(), "dem_utm25s.tif");
     const std::unordered_set<std::uint64_t> hashes = graph->contentHashes();
-    for (const Source* source : {graph->find("dem"), graph->find("base"), graph->find("merged"), raster->coverage()}) {
+    for (const Source* source :
+         {graph->find("dem"), graph->find("base"), graph->find("merged"), raster->coverage()}) {
         ASSERT_NE(source, nullptr);
         EXPECT_EQ(hashes.count(source->contentHash()), 1u) << source->name();
     }

@@ -10,10 +10,10 @@
 #include <unistd.h>
 
 #include "sylva/core/geo/Geodesy.h"
+#include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/core/sources/compose/BlendSource.h"
 #include "sylva/core/sources/raster/ConstantSource.h"
 #include "sylva/core/sources/raster/RasterSource.h"
-#include "sylva/core/scheduler/TileEvaluator.h"
 
 namespace sylva {
 namespace {

@@ -26,10 +26,7 @@ public:
         return add(text.data(), text.size());
     }
     template <typename T>
-        requires std::is_arithmetic_v<T>
-    ContentHash& add(T value) {
-        return add(&value, sizeof value);
-    }
+    requires std::is_arithmetic_v<T> ContentHash& add(T value) { return add(&value, sizeof value); }
     std::uint64_t value() const {
         std::uint64_t x = state_;
         x ^= x >> 33;

@@ -17,11 +17,11 @@ struct Geodetic {
 
 class Ellipsoid {
 public:
-    static constexpr double kSemiMajorAxis = 6378137.0;             // a, metres
-    static constexpr double kFlattening = 1.0 / 298.257223563;      // f
+    static constexpr double kSemiMajorAxis = 6378137.0;                                // a, metres
+    static constexpr double kFlattening = 1.0 / 298.257223563;                         // f
     static constexpr double kEccentricitySquared = kFlattening * (2.0 - kFlattening);  // e^2
     static constexpr double kSemiMinorAxis = kSemiMajorAxis * (1.0 - kFlattening);     // b
-    static constexpr double kMeanRadius = 6371008.8;                 // (2a + b) / 3, metres
+    static constexpr double kMeanRadius = 6371008.8;  // (2a + b) / 3, metres
 
     // Prime vertical radius of curvature N(lat), metres.
     static double primeVerticalRadius(double latitude);

@@ -7,7 +7,8 @@ namespace sylva {
 class Geodesy {
 public:
     // Length of the shortest path between two points on the ellipsoid.
-    static double distance(double latitude1, double longitude1, double latitude2, double longitude2);
+    static double distance(double latitude1, double longitude1, double latitude2,
+                           double longitude2);
     // The point reached from (latitude, longitude) after `distance` metres along the
     // geodesic that starts at `bearing` (clockwise from north).
     static void destination(double latitude, double longitude, double bearing, double distance,

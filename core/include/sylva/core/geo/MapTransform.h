@@ -34,7 +34,9 @@ class MapTransform {
 public:
     // Viewer's ground point (geodetic latitude, radians).
     explicit MapTransform(Real viewerLatitude)
-        : sinLat_(std::sin(viewerLatitude)), cosLat_(std::cos(viewerLatitude)), latitude_(viewerLatitude) {}
+        : sinLat_(std::sin(viewerLatitude)),
+          cosLat_(std::cos(viewerLatitude)),
+          latitude_(viewerLatitude) {}
     MapTransform(Real sinLatitude, Real cosLatitude, Real latitude)
         : sinLat_(sinLatitude), cosLat_(cosLatitude), latitude_(latitude) {}
 

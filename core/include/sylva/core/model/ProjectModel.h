@@ -21,9 +21,10 @@ struct Attribute {
 };
 
 struct Block {
-    std::string keyword;  // "project", "source", "camera", "views", "render", "scenario", "param" ...
-    std::string name;     // empty for anonymous blocks (project, render)
-    std::string kind;     // for sources: "noise", "hypsometric" ...; empty otherwise
+    std::string
+        keyword;       // "project", "source", "camera", "views", "render", "scenario", "param" ...
+    std::string name;  // empty for anonymous blocks (project, render)
+    std::string kind;  // for sources: "noise", "hypsometric" ...; empty otherwise
     SourceLocation location;  // of the block's name (or keyword when anonymous)
     std::vector<Attribute> attributes;
     // Hash of kind, attributes and the hashes of referenced sources: blocks with equal

@@ -23,8 +23,8 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "sylva/core/base/Result.h"
-#include "sylva/core/scene/Camera.h"
 #include "sylva/core/model/ProjectModel.h"
+#include "sylva/core/scene/Camera.h"
 
 namespace sylva {
 

@@ -30,8 +30,8 @@
 #include <vector>
 
 #include "sylva/core/base/Result.h"
-#include "sylva/core/scene/DateTime.h"
 #include "sylva/core/model/ProjectModel.h"
+#include "sylva/core/scene/DateTime.h"
 
 namespace sylva {
 

@@ -36,7 +36,9 @@ struct ClipmapWindow {
     std::int64_t originX = 0;  // first global column, in [0, totalColumns)
     std::int64_t originY = 0;  // first global row (may be negative near the north pole)
 
-    std::int64_t totalColumns(int size) const { return std::int64_t{TileKey::columns(level, lonReduction)} * size; }
+    std::int64_t totalColumns(int size) const {
+        return std::int64_t{TileKey::columns(level, lonReduction)} * size;
+    }
     std::int64_t totalRows(int size) const { return std::int64_t{TileKey::rows(level)} * size; }
     double texelWidth(int size) const;   // radians of longitude
     double texelHeight(int size) const;  // radians of latitude

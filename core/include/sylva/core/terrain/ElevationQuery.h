@@ -16,7 +16,8 @@ public:
     // Height in metres at (latitude, longitude) radians, bilinear in the grid of
     // pyramid level `level` with longitude reduction `lonReduction`. Fails when the
     // tile cannot be produced (the message names source and tile).
-    Result<double> heightAt(double latitude, double longitude, int level, int lonReduction = 0) const;
+    Result<double> heightAt(double latitude, double longitude, int level,
+                            int lonReduction = 0) const;
 
     // Height in metres under (latitude, longitude) as ring level `ringLevel` of the
     // spherical clipmap draws it at the viewer's nadir: the same pyramid grid

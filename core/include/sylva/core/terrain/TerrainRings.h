@@ -22,7 +22,7 @@ struct TerrainVertex {
     float blend;       // 0: this level's clipmap, 1: the next coarser one (outer border)
     float sinBearing;  // bearing clockwise from north (or south, see the renderer)
     float cosBearing;
-    float seam;        // +1 first column, -1 duplicated last column, 0 otherwise
+    float seam;  // +1 first column, -1 duplicated last column, 0 otherwise
 };
 
 struct TerrainMesh {

@@ -40,7 +40,9 @@ public:
         SYLVA_CHECK(ix >= -border_ && ix < size_ + border_ && channel >= 0 && channel < channels_);
         return row(iy)[static_cast<std::size_t>(ix + border_) * channels_ + channel];
     }
-    float at(int ix, int iy, int channel) const { return const_cast<ImageTile*>(this)->at(ix, iy, channel); }
+    float at(int ix, int iy, int channel) const {
+        return const_cast<ImageTile*>(this)->at(ix, iy, channel);
+    }
 
     // Geographic position of texel centres, radians (see above).
     double texelLongitude(double ix) const;

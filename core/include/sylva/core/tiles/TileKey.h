@@ -15,10 +15,10 @@
 namespace sylva {
 
 struct TileKey {
-    std::int32_t level = 0;          // 0 .. kMaxLevel
-    std::int32_t lonReduction = 0;   // k, 0 .. level + 1
-    std::int32_t x = 0;              // column, 0 .. columns - 1
-    std::int32_t y = 0;              // row, 0 .. rows - 1
+    std::int32_t level = 0;         // 0 .. kMaxLevel
+    std::int32_t lonReduction = 0;  // k, 0 .. level + 1
+    std::int32_t x = 0;             // column, 0 .. columns - 1
+    std::int32_t y = 0;             // row, 0 .. rows - 1
 
     // 2^(level+1) columns must fit an int32: level 29 has texels of ~1 mm at 256².
     static constexpr std::int32_t kMaxLevel = 29;
@@ -50,9 +50,11 @@ struct TileKey {
 struct TileKeyHash {
     std::size_t operator()(const TileKey& key) const {
         std::uint64_t h = static_cast<std::uint64_t>(key.level) * 0x9E3779B97F4A7C15ull;
-        h ^= static_cast<std::uint64_t>(key.lonReduction) + 0x632BE59BD9B4E019ull + (h << 6) + (h >> 2);
+        h ^= static_cast<std::uint64_t>(key.lonReduction) + 0x632BE59BD9B4E019ull + (h << 6) +
+             (h >> 2);
         h ^= static_cast<std::uint64_t>(static_cast<std::uint32_t>(key.x)) + (h << 6) + (h >> 2);
-        h ^= static_cast<std::uint64_t>(static_cast<std::uint32_t>(key.y)) * 0xBF58476D1CE4E5B9ull + (h << 6) + (h >> 2);
+        h ^= static_cast<std::uint64_t>(static_cast<std::uint32_t>(key.y)) * 0xBF58476D1CE4E5B9ull +
+             (h << 6) + (h >> 2);
         return static_cast<std::size_t>(h);
     }
 };

@@ -19,9 +19,9 @@
 #include <vector>
 
 #include "sylva/core/base/Result.h"
-#include "sylva/core/vegetation/LodSelector.h"
 #include "sylva/core/scene/Camera.h"
 #include "sylva/core/sources/plants/PlantsSource.h"
+#include "sylva/core/vegetation/LodSelector.h"
 
 namespace sylva {
 
@@ -33,11 +33,11 @@ struct VegetationStreamLayer {
 };
 
 struct VegetationStreamSettings {
-    double pixelAngle = 1e-3;      // radians per pixel
-    double minimumPixels = 1.5;    // plants smaller than this are not streamed
-    double maximumDistance = 0.0;  // metres; 0 = kDefaultDistance
+    double pixelAngle = 1e-3;        // radians per pixel
+    double minimumPixels = 1.5;      // plants smaller than this are not streamed
+    double maximumDistance = 0.0;    // metres; 0 = kDefaultDistance
     double heightAboveGround = 0.0;  // metres, the camera's
-    bool wait = true;              // produce every wanted tile before returning
+    bool wait = true;                // produce every wanted tile before returning
     static constexpr double kDefaultDistance = 6000.0;
 };
 
@@ -52,16 +52,17 @@ class VegetationStream {
 public:
     // The batches to draw this frame (owned by the stream, valid until the next
     // update). Fails when a wanted tile fails (the error names source and tile).
-    Result<std::vector<const InstanceBatch*>> update(const std::vector<VegetationStreamLayer>& layers,
-                                                     TileProvider& provider, const Camera& camera,
-                                                     const std::vector<SpeciesLod>& species,
-                                                     const VegetationStreamSettings& settings);
+    Result<std::vector<const InstanceBatch*>> update(
+        const std::vector<VegetationStreamLayer>& layers, TileProvider& provider,
+        const Camera& camera, const std::vector<SpeciesLod>& species,
+        const VegetationStreamSettings& settings);
 
     const VegetationStreamStatistics& statistics() const { return statistics_; }
 
     // The tiles (level, lonReduction 0) within `radius` metres of (latitude, longitude)
     // radians, refined near the point. Public for tests.
-    static std::vector<TileKey> tilesAround(double latitude, double longitude, double radius, int minimumLevel);
+    static std::vector<TileKey> tilesAround(double latitude, double longitude, double radius,
+                                            int minimumLevel);
 
 private:
     struct Entry {

@@ -87,7 +87,7 @@ public:
 private:
     explicit ShaderLibrary(std::optional<std::filesystem::path> directory);
 
-    std::optional<std::filesystem::path> directory_;  // nullopt: embedded table
+    std::optional<std::filesystem::path> directory_;               // nullopt: embedded table
     std::vector<std::pair<std::string, std::string_view>> extra_;  // from withEmbedded
 };
 

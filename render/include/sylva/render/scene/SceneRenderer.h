@@ -15,9 +15,9 @@
 #include <glm/glm.hpp>
 
 #include "sylva/core/base/Result.h"
-#include "sylva/core/vegetation/VegetationStream.h"
 #include "sylva/core/scene/Camera.h"
 #include "sylva/core/sources/graph/SourceGraph.h"
+#include "sylva/core/vegetation/VegetationStream.h"
 #include "sylva/render/gl/Framebuffer.h"
 #include "sylva/render/shading/ShadingPass.h"
 #include "sylva/render/terrain/TerrainRenderer.h"
@@ -55,9 +55,9 @@ struct Image {
 
 struct RenderStatistics {
     TerrainFrameStatistics terrain;
-    double heightAboveTerrain = 0;  // metres
-    double gpuSeconds = 0;          // draw + shade + read-back
-    double terrainPassSeconds = 0;  // the terrain's G-buffer pass alone (to glFinish)
+    double heightAboveTerrain = 0;     // metres
+    double gpuSeconds = 0;             // draw + shade + read-back
+    double terrainPassSeconds = 0;     // the terrain's G-buffer pass alone (to glFinish)
     double vegetationPassSeconds = 0;  // selection, upload and the plants' G-buffer pass
     VegetationStatistics vegetation;
     VegetationStreamStatistics vegetationStream;

@@ -23,28 +23,28 @@
 #include "sylva/core/base/Result.h"
 #include "sylva/core/scene/Camera.h"
 #include "sylva/core/sources/graph/SourceGraph.h"
+#include "sylva/core/terrain/Clipmap.h"
 #include "sylva/core/terrain/LevelVisibility.h"
 #include "sylva/core/terrain/TerrainRings.h"
-#include "sylva/core/terrain/Clipmap.h"
-#include "sylva/render/terrain/ClipmapTexture.h"
 #include "sylva/render/gl/ShaderLibrary.h"
 #include "sylva/render/gl/ShaderProgram.h"
+#include "sylva/render/terrain/ClipmapTexture.h"
 
 namespace sylva::render {
 
 struct TerrainSettings {
-    int clipmapSize = 256;     // texels per clipmap level side (= tile size)
-    int maxLevel = 24;         // finest ring level
-    int columns = 256;         // bearing steps of the ring mesh
-    int ringsPerLevel = 24;    // rings per level
+    int clipmapSize = 256;             // texels per clipmap level side (= tile size)
+    int maxLevel = 24;                 // finest ring level
+    int columns = 256;                 // bearing steps of the ring mesh
+    int ringsPerLevel = 24;            // rings per level
     double maxTerrainHeight = 9000.0;  // metres, for the horizon safety margin
 };
 
 struct TerrainFrameStatistics {
-    LevelRange levels;           // levels drawn
-    LevelRange wanted;           // levels the view asked for
-    std::string degraded;        // why fewer levels were drawn than wanted (an error); empty if none
-    int waitingLevel = -1;       // the first level not drawn because its tiles are still being produced
+    LevelRange levels;      // levels drawn
+    LevelRange wanted;      // levels the view asked for
+    std::string degraded;   // why fewer levels were drawn than wanted (an error); empty if none
+    int waitingLevel = -1;  // the first level not drawn because its tiles are still being produced
     std::uint64_t triangles = 0;
     std::uint64_t uploadedBytes = 0;
     double updateSeconds = 0;  // CPU clipmap update including tile evaluation
@@ -71,14 +71,16 @@ public:
     // `waitForAll` (batch rendering) waits for every level, so the image does not
     // depend on thread timing. Returns the levels to draw (statistics().degraded says
     // why fewer on error), or the error when not even the coarsest level could be made.
-    Result<LevelRange> update(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
-                              const LevelRange& wanted,
-                              std::optional<std::chrono::steady_clock::time_point> deadline = std::nullopt,
-                              bool waitForAll = true);
+    Result<LevelRange> update(
+        const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
+        const LevelRange& wanted,
+        std::optional<std::chrono::steady_clock::time_point> deadline = std::nullopt,
+        bool waitForAll = true);
 
     // Draws into the bound G-buffer (attachment 0: albedo, 1: normal; depth cleared
     // to 0 beforehand). `projection` is reversed-Z.
-    void draw(const Camera& camera, const glm::dmat4& projection, const LevelRange& levels, bool ocean);
+    void draw(const Camera& camera, const glm::dmat4& projection, const LevelRange& levels,
+              bool ocean);
 
     const TerrainFrameStatistics& statistics() const { return statistics_; }
     const TerrainSettings& settings() const { return settings_; }

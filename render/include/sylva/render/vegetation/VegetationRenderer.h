@@ -20,9 +20,9 @@
 
 #include "sylva/core/base/Result.h"
 #include "sylva/core/plantlod/BillboardCloudBuilder.h"
-#include "sylva/core/vegetation/LodSelector.h"
 #include "sylva/core/plantlod/PlantAsset.h"
 #include "sylva/core/scene/Camera.h"
+#include "sylva/core/vegetation/LodSelector.h"
 #include "sylva/render/gl/ShaderLibrary.h"
 #include "sylva/render/gl/ShaderProgram.h"
 

@@ -27,10 +27,10 @@
 
 #include <glm/glm.hpp>
 
-#include "sylva/core/sources/vector/FeatureSource.h"
-#include "sylva/core/sources/plants/PlantsSource.h"
 #include "sylva/core/sources/Source.h"
 #include "sylva/core/sources/SourceBuildContext.h"
+#include "sylva/core/sources/plants/PlantsSource.h"
+#include "sylva/core/sources/vector/FeatureSource.h"
 
 namespace sylva {
 

@@ -24,9 +24,9 @@ class PlantsSource;
 
 // The sources that feed the terrain clipmaps of one scenario.
 struct TerrainLayers {
-    const Source* elevation = nullptr;  // required
-    const Source* color = nullptr;      // may be null: a neutral grey is drawn
-    const Source* normals = nullptr;    // never null: derived from elevation if not given
+    const Source* elevation = nullptr;        // required
+    const Source* color = nullptr;            // may be null: a neutral grey is drawn
+    const Source* normals = nullptr;          // never null: derived from elevation if not given
     std::vector<const PlantsSource*> plants;  // drawn by the vegetation renderer (may be empty)
 };
 

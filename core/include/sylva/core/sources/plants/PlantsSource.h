@@ -49,10 +49,10 @@
 #include <string>
 #include <vector>
 
-#include "sylva/core/sources/vector/FeatureSource.h"
-#include "sylva/core/sources/plants/InstanceTile.h"
 #include "sylva/core/sources/Source.h"
 #include "sylva/core/sources/SourceBuildContext.h"
+#include "sylva/core/sources/plants/InstanceTile.h"
+#include "sylva/core/sources/vector/FeatureSource.h"
 
 namespace sylva {
 

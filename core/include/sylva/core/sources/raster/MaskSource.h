@@ -21,9 +21,9 @@
 
 #include <glm/glm.hpp>
 
-#include "sylva/core/sources/raster/BandExpression.h"
 #include "sylva/core/sources/Source.h"
 #include "sylva/core/sources/SourceBuildContext.h"
+#include "sylva/core/sources/raster/BandExpression.h"
 
 namespace sylva {
 

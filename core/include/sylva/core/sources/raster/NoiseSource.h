@@ -9,16 +9,16 @@
 
 #include <glm/glm.hpp>
 
-#include "sylva/core/sources/raster/GradientNoise.h"
 #include "sylva/core/sources/Source.h"
 #include "sylva/core/sources/SourceBuildContext.h"
+#include "sylva/core/sources/raster/GradientNoise.h"
 
 namespace sylva {
 
 struct NoiseParameters {
     std::uint32_t seed = 1;
-    double amplitude = 2500.0;       // metres
-    double baseWavelength = 4.0e6;   // metres
+    double amplitude = 2500.0;      // metres
+    double baseWavelength = 4.0e6;  // metres
     int octaves = 24;
     double lacunarity = 2.0;
     double gain = 0.5;

@@ -22,9 +22,9 @@
 
 #include <string>
 
-#include "sylva/core/sources/vector/FeatureSource.h"
 #include "sylva/core/sources/Source.h"
 #include "sylva/core/sources/SourceBuildContext.h"
+#include "sylva/core/sources/vector/FeatureSource.h"
 
 namespace sylva {
 

@@ -22,9 +22,9 @@
 #include <memory>
 #include <mutex>
 
-#include "sylva/core/sources/vector/FeatureCollection.h"
 #include "sylva/core/sources/Source.h"
 #include "sylva/core/sources/SourceBuildContext.h"
+#include "sylva/core/sources/vector/FeatureCollection.h"
 
 namespace sylva {
 
