@@ -62,16 +62,22 @@ ParsedCommandLine parseCommandLine(const std::vector<std::string>& arguments,
     return result;
 }
 
-std::optional<std::size_t> parseCacheMegabytes(const std::string& text) {
-    if (text.empty() || text.size() > 7 ||
-        text.find_first_not_of("0123456789") != std::string::npos) {
-        return std::nullopt;
+Result<std::optional<std::size_t>> cacheMegabytesOption(const ParsedCommandLine& command) {
+    const std::optional<std::string> text = command.get("cache-mb");
+    if (!text) {
+        return std::optional<std::size_t>();
     }
-    const std::size_t value = std::stoul(text);
+    const Error error{"--cache-mb expects a tile cache budget in MiB within 16..1048576, got '" +
+                      *text + "'"};
+    if (text->empty() || text->size() > 7 ||
+        text->find_first_not_of("0123456789") != std::string::npos) {
+        return error;
+    }
+    const std::size_t value = std::stoul(*text);
     if (value < 16 || value > (1u << 20)) {
-        return std::nullopt;
+        return error;
     }
-    return value;
+    return std::optional<std::size_t>(value);
 }
 
 bool parseSize(const std::string& text, int& width, int& height) {

@@ -33,9 +33,10 @@ struct ParsedCommandLine {
     }
 };
 
-// The value of `--cache-mb N` (tile cache budget in MiB, 16..1048576); nullopt when
-// it is not such a whole number.
-std::optional<std::size_t> parseCacheMegabytes(const std::string& text);
+// The `--cache-mb N` option (tile cache budget in MiB, 16..1048576): nullopt when absent,
+// or an error "--cache-mb expects ..., got 'N'" when N is not such a whole number (a usage
+// error, exit code 2).
+Result<std::optional<std::size_t>> cacheMegabytesOption(const ParsedCommandLine& command);
 // "WIDTHxHEIGHT" within 1..16384 each (--size); false for anything else.
 bool parseSize(const std::string& text, int& width, int& height);
 

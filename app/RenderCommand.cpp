@@ -313,15 +313,12 @@ int runRender(const std::vector<std::string>& arguments) {
         return 2;
     }
     const std::optional<render::GlBackend> backend = glOption.value();
-    std::optional<std::size_t> cacheOverride;
-    if (std::optional<std::string> cache = command.get("cache-mb")) {
-        cacheOverride = parseCacheMegabytes(*cache);
-        if (!cacheOverride) {
-            reportError("--cache-mb expects a tile cache budget in MiB within 16..1048576, got '" +
-                        *cache + "'");
-            return 2;
-        }
+    const Result<std::optional<std::size_t>> cacheOption = cacheMegabytesOption(command);
+    if (!cacheOption) {
+        reportError(cacheOption.error().message);
+        return 2;
     }
+    const std::optional<std::size_t> cacheOverride = cacheOption.value();
     std::pair<int, int> shard{1, 1};
     if (std::optional<std::string> text = command.get("shard")) {
         Result<std::pair<int, int>> parsed = ViewSeries::parseShard(*text);

@@ -45,13 +45,13 @@ int runTerrainBench(const std::vector<std::string>& arguments) {
     }
     options.framesFolder = command.get("write-frames").value_or("");
     options.waitForTiles = command.has("wait-for-tiles");
-    if (std::optional<std::string> cache = command.get("cache-mb")) {
-        const std::optional<std::size_t> megabytes = parseCacheMegabytes(*cache);
-        if (!megabytes) {
-            reportError("--cache-mb expects a tile cache budget in MiB within 16..1048576");
-            return 2;
-        }
-        options.cacheBytes = *megabytes << 20;
+    const Result<std::optional<std::size_t>> cacheOption = cacheMegabytesOption(command);
+    if (!cacheOption) {
+        reportError(cacheOption.error().message);
+        return 2;
+    }
+    if (cacheOption.value()) {
+        options.cacheBytes = *cacheOption.value() << 20;
     }
     render::ContextOptions contextOptions;
     Result<std::optional<render::GlBackend>> backend = glBackendOption(command);

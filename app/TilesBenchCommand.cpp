@@ -349,15 +349,12 @@ int runTilesBench(const std::vector<std::string>& arguments) {
         reportError(command.error.empty() ? "bench tiles takes no arguments" : command.error);
         return 2;
     }
-    std::size_t budgetMegabytes = 64;
-    if (std::optional<std::string> cache = command.get("cache-mb")) {
-        const std::optional<std::size_t> parsed = parseCacheMegabytes(*cache);
-        if (!parsed) {
-            reportError("--cache-mb expects a tile cache budget in MiB within 16..1048576");
-            return 2;
-        }
-        budgetMegabytes = *parsed;
+    const Result<std::optional<std::size_t>> cacheOption = cacheMegabytesOption(command);
+    if (!cacheOption) {
+        reportError(cacheOption.error().message);
+        return 2;
     }
+    const std::size_t budgetMegabytes = cacheOption.value().value_or(64);
     const std::filesystem::path data = command.get("data").value_or("data");
     const bool verbose = command.has("verbose");
     const std::filesystem::path demFile = data / "olinda" / "olinda_dem_utm25s.tif";

@@ -107,15 +107,12 @@ int runWatch(const std::vector<std::string>& arguments) {
         return 2;
     }
     // The budget: --cache-mb, else the render block's cache_mb (read on the first load).
-    std::optional<std::size_t> cacheMegabytes;
-    if (std::optional<std::string> cache = command.get("cache-mb")) {
-        cacheMegabytes = parseCacheMegabytes(*cache);
-        if (!cacheMegabytes) {
-            reportError("--cache-mb expects a tile cache budget in MiB within 16..1048576, got '" +
-                        *cache + "'");
-            return 2;
-        }
+    const Result<std::optional<std::size_t>> cacheOption = cacheMegabytesOption(command);
+    if (!cacheOption) {
+        reportError(cacheOption.error().message);
+        return 2;
     }
+    std::optional<std::size_t> cacheMegabytes = cacheOption.value();
     render::ContextOptions contextOptions;
     Result<std::optional<render::GlBackend>> backend = glBackendOption(command);
     if (!backend) {

@@ -69,6 +69,14 @@ expect_stderr "sylva: --cache-mb expects a tile cache budget in MiB within 16..1
 expect_no_png "$SCRATCH/cache"
 end
 
+begin "--cache-mb out of range: one message for every command that takes it"
+for command in "watch $PROJECTS/tiny.sylva --exit-after 1" "bench tiles" "bench terrain"; do
+  run $command --cache-mb 8
+  expect_rc 2
+  expect_stderr "sylva: --cache-mb expects a tile cache budget in MiB within 16..1048576, got '8'"
+done
+end
+
 begin "bench vegetation --methods with an unknown method -> exit 2"
 run bench vegetation --methods lod,trees
 expect_rc 2
