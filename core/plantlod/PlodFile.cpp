@@ -1,6 +1,6 @@
 // The `.plod` codec: sections assembled from the record field lists of PlodRecords.h
-// (one list per record, run by the writer and the reader alike), the header and table
-// checks of docs/formats.md ("Validation") in the order they are listed there.
+// (one list per record, run by the writer and the reader alike) and the checks of
+// docs/formats.md ("Validation"), first failure reported.
 #include "sylva/core/plantlod/PlodFile.h"
 
 #include <cmath>

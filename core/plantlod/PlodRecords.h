@@ -54,14 +54,10 @@ public:
     }
     void reserved(std::size_t count) { bytes.insert(bytes.end(), count, 0); }
 
+    // Zero bytes up to the next multiple of `alignment`.
     void pad(std::size_t alignment) {
         while (bytes.size() % alignment != 0) {
             bytes.push_back(0);
-        }
-    }
-    void putU64At(std::size_t at, std::uint64_t value) {
-        for (int i = 0; i < 8; ++i) {
-            bytes[at + std::size_t(i)] = static_cast<std::uint8_t>(value >> (8 * i));
         }
     }
 
