@@ -508,19 +508,120 @@ Box sceneBounds(const PlantModel& model) {
     return box;
 }
 
-}  // namespace
-
-double sourceMeshAmbientOcclusion(const PlantModel& model, const AmbientOcclusionOptions& options) {
-    const TraceScene scene = sourceScene(model, false);
-    return outsideAverage(scene, sceneBounds(model), 0.0f, options, 1,
+// The mean ambient term outside rays see on the source mesh (four paths per hit).
+double sourceAverage(const TraceScene& source, const Box& bounds,
+                     const AmbientOcclusionOptions& options) {
+    return outsideAverage(source, bounds, 0.0f, options, 1,
                           [&](const Hit& hit, const glm::vec3& at, std::mt19937_64& random) {
                               double sum = 0.0;
                               for (int k = 0; k < 4; ++k) {
-                                  sum += incoming(scene, at, hit.normal, 0.0f, options.bounces,
+                                  sum += incoming(source, at, hit.normal, 0.0f, options.bounces,
                                                   random);
                               }
                               return sum / 4.0;
                           });
+}
+
+// The scene of one ellipsoid level: its ellipsoids and the lines whose interval meets
+// the level's [low, high), ellipsoid items first.
+struct LevelScene {
+    TraceScene scene;
+    std::vector<std::size_t> ellipsoidIds, lineIds;  // global indices of the scene's items
+    std::size_t lineBase = 0;                        // the first line item
+
+    bool isEllipsoid(std::uint32_t item) const { return item < lineBase; }
+    float errorMinimum(std::uint32_t item) const {
+        return isEllipsoid(item) ? scene.ellipsoids[scene.items[item].index].errorMinimum
+                                 : scene.lines[scene.items[item].index].errorMinimum;
+    }
+};
+
+LevelScene levelScene(const PlantLod& lod, float low, float high) {
+    LevelScene level;
+    TraceScene& scene = level.scene;
+    for (std::size_t i = 0; i < lod.ellipsoids.size(); ++i) {
+        const LodEllipsoid& e = lod.ellipsoids[i];
+        if (e.errorMinimum < high && low < e.errorMaximum) {
+            scene.items.push_back({ItemKind::Ellipsoid,
+                                   static_cast<std::uint32_t>(scene.ellipsoids.size()),
+                                   ellipsoidBox(e), e.errorMinimum, e.errorMaximum});
+            scene.ellipsoids.push_back(e);
+            level.ellipsoidIds.push_back(i);
+        }
+    }
+    level.lineBase = scene.items.size();
+    for (std::size_t i = 0; i < lod.lines.size(); ++i) {
+        const LodLine& l = lod.lines[i];
+        if (l.errorMinimum < high && low < l.errorMaximum) {
+            scene.items.push_back({ItemKind::Line, static_cast<std::uint32_t>(scene.lines.size()),
+                                   lineBox(l), l.errorMinimum, l.errorMaximum});
+            scene.lines.push_back(l);
+            level.lineIds.push_back(i);
+        }
+    }
+    scene.build();
+    return level;
+}
+
+// A random point on an item's surface with its outward normal; false for a degenerate
+// line sample (to be skipped).
+bool surfaceSample(const LevelScene& level, std::uint32_t item, std::mt19937_64& random,
+                   glm::vec3& p, glm::vec3& n) {
+    const TraceScene& scene = level.scene;
+    if (level.isEllipsoid(item)) {
+        const LodEllipsoid& e = scene.ellipsoids[scene.items[item].index];
+        const glm::vec3 q = randomUnit(random);
+        p = e.center;
+        n = glm::vec3(0.0f);
+        for (int a = 0; a < 3; ++a) {
+            p += e.axes[a] * (e.radii[a] * q[a]);
+            n += e.axes[a] * (q[a] / std::max(e.radii[a], 1e-6f));
+        }
+        n = glm::normalize(n);
+        return true;
+    }
+    const LodLine& l = scene.lines[scene.items[item].index];
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const float t = unit(random);
+    const glm::vec3 axis = l.end - l.start;
+    const glm::vec3 around = randomUnit(random);
+    const glm::vec3 radial =
+        around - glm::dot(around, axis) / std::max(glm::dot(axis, axis), 1e-20f) * axis;
+    if (glm::dot(radial, radial) < 1e-12f) {
+        return false;
+    }
+    n = glm::normalize(radial);
+    p = l.start + t * axis + n * (l.startRadius + t * (l.endRadius - l.startRadius));
+    return true;
+}
+
+// The ambient term of one item: the mean over up to `samples` surface points that are
+// not hidden inside another primitive of the same LoD (0 when all are).
+float itemOcclusion(const LevelScene& level, std::uint32_t item, std::size_t global,
+                    const AmbientOcclusionOptions& options) {
+    std::mt19937_64 random(options.seed * 0xD1B54A32D192ED03ull +
+                           static_cast<std::uint64_t>(global));
+    const float error = level.errorMinimum(item);
+    double sum = 0.0;
+    int count = 0;
+    for (int s = 0; s < options.samples * 2 && count < options.samples; ++s) {
+        glm::vec3 p, n;
+        if (!surfaceSample(level, item, random, p, n)) {
+            continue;
+        }
+        if (level.scene.inside(p, error, item)) {
+            continue;  // hidden inside another primitive of the same LoD
+        }
+        sum += incoming(level.scene, p, n, error, options.bounces, random);
+        ++count;
+    }
+    return count > 0 ? static_cast<float>(sum / count) : 0.0f;
+}
+
+}  // namespace
+
+double sourceMeshAmbientOcclusion(const PlantModel& model, const AmbientOcclusionOptions& options) {
+    return sourceAverage(sourceScene(model, false), sceneBounds(model), options);
 }
 
 void computeAmbientOcclusion(const PlantModel& model, PlantLod& lod,
@@ -536,49 +637,16 @@ void computeAmbientOcclusion(const PlantModel& model, PlantLod& lod,
         ranges.emplace_back(0.0f, kInfinity);
     }
     const Box bounds = sceneBounds(model);
-    const TraceScene source = sourceScene(model, false);
-    const double target =
-        outsideAverage(source, bounds, 0.0f, options, 1,
-                       [&](const Hit& hit, const glm::vec3& at, std::mt19937_64& random) {
-                           double s = 0.0;
-                           for (int k = 0; k < 4; ++k) {
-                               s += incoming(source, at, hit.normal, 0.0f, options.bounces, random);
-                           }
-                           return s / 4.0;
-                       });
+    const double target = sourceAverage(sourceScene(model, false), bounds, options);
     for (std::size_t k = 0; k < ranges.size(); ++k) {
         const auto [low, high] = ranges[k];
-        TraceScene scene;
-        std::vector<std::size_t> ellipsoidIds, lineIds;  // global indices of the scene's items
-        for (std::size_t i = 0; i < lod.ellipsoids.size(); ++i) {
-            const LodEllipsoid& e = lod.ellipsoids[i];
-            if (e.errorMinimum < high && low < e.errorMaximum) {
-                scene.items.push_back({ItemKind::Ellipsoid,
-                                       static_cast<std::uint32_t>(scene.ellipsoids.size()),
-                                       ellipsoidBox(e), e.errorMinimum, e.errorMaximum});
-                scene.ellipsoids.push_back(e);
-                ellipsoidIds.push_back(i);
-            }
-        }
-        const std::size_t lineBase = scene.items.size();
-        for (std::size_t i = 0; i < lod.lines.size(); ++i) {
-            const LodLine& l = lod.lines[i];
-            if (l.errorMinimum < high && low < l.errorMaximum) {
-                scene.items.push_back({ItemKind::Line,
-                                       static_cast<std::uint32_t>(scene.lines.size()), lineBox(l),
-                                       l.errorMinimum, l.errorMaximum});
-                scene.lines.push_back(l);
-                lineIds.push_back(i);
-            }
-        }
-        scene.build();
+        LevelScene level = levelScene(lod, low, high);
+        TraceScene& scene = level.scene;
         // Primitives computed in this scene: ellipsoids starting in the level, lines
         // whose own error falls in it (each primitive exactly once).
         std::vector<std::uint32_t> work;
         for (std::size_t item = 0; item < scene.items.size(); ++item) {
-            const float own = item < lineBase
-                                  ? scene.ellipsoids[scene.items[item].index].errorMinimum
-                                  : scene.lines[scene.items[item].index].errorMinimum;
+            const float own = level.errorMinimum(static_cast<std::uint32_t>(item));
             if (low <= own && own < high) {
                 work.push_back(static_cast<std::uint32_t>(item));
             }
@@ -586,59 +654,19 @@ void computeAmbientOcclusion(const PlantModel& model, PlantLod& lod,
         std::vector<float> values(work.size(), 1.0f);
         runOnThreads(static_cast<int>(work.size()), options.threads, [&](int w) {
             const std::uint32_t item = work[w];
-            const bool isEllipsoid = item < lineBase;
             const std::size_t global =
-                isEllipsoid ? ellipsoidIds[scene.items[item].index]
-                            : lineIds[scene.items[item].index] + lod.ellipsoids.size();
-            std::mt19937_64 random(options.seed * 0xD1B54A32D192ED03ull +
-                                   static_cast<std::uint64_t>(global));
-            const float error = isEllipsoid ? scene.ellipsoids[scene.items[item].index].errorMinimum
-                                            : scene.lines[scene.items[item].index].errorMinimum;
-            double sum = 0.0;
-            int count = 0;
-            for (int s = 0; s < options.samples * 2 && count < options.samples; ++s) {
-                glm::vec3 p, n;
-                if (isEllipsoid) {
-                    const LodEllipsoid& e = scene.ellipsoids[scene.items[item].index];
-                    const glm::vec3 q = randomUnit(random);
-                    p = e.center;
-                    n = glm::vec3(0.0f);
-                    for (int a = 0; a < 3; ++a) {
-                        p += e.axes[a] * (e.radii[a] * q[a]);
-                        n += e.axes[a] * (q[a] / std::max(e.radii[a], 1e-6f));
-                    }
-                    n = glm::normalize(n);
-                } else {
-                    const LodLine& l = scene.lines[scene.items[item].index];
-                    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-                    const float t = unit(random);
-                    const glm::vec3 axis = l.end - l.start;
-                    const glm::vec3 around = randomUnit(random);
-                    const glm::vec3 radial = around - glm::dot(around, axis) /
-                                                          std::max(glm::dot(axis, axis), 1e-20f) *
-                                                          axis;
-                    if (glm::dot(radial, radial) < 1e-12f) {
-                        continue;
-                    }
-                    n = glm::normalize(radial);
-                    p = l.start + t * axis +
-                        n * (l.startRadius + t * (l.endRadius - l.startRadius));
-                }
-                if (scene.inside(p, error, item)) {
-                    continue;  // hidden inside another primitive of the same LoD
-                }
-                sum += incoming(scene, p, n, error, options.bounces, random);
-                ++count;
-            }
-            values[w] = count > 0 ? static_cast<float>(sum / count) : 0.0f;
+                level.isEllipsoid(item)
+                    ? level.ellipsoidIds[scene.items[item].index]
+                    : level.lineIds[scene.items[item].index] + lod.ellipsoids.size();
+            values[w] = itemOcclusion(level, item, global, options);
         });
         for (std::size_t w = 0; w < work.size(); ++w) {
             const Item& item = scene.items[work[w]];
-            if (work[w] < lineBase) {
-                lod.ellipsoids[ellipsoidIds[item.index]].ambientOcclusion = values[w];
+            if (level.isEllipsoid(work[w])) {
+                lod.ellipsoids[level.ellipsoidIds[item.index]].ambientOcclusion = values[w];
                 scene.ellipsoids[item.index].ambientOcclusion = values[w];
             } else {
-                lod.lines[lineIds[item.index]].ambientOcclusion = values[w];
+                lod.lines[level.lineIds[item.index]].ambientOcclusion = values[w];
                 scene.lines[item.index].ambientOcclusion = values[w];
             }
         }
@@ -655,8 +683,9 @@ void computeAmbientOcclusion(const PlantModel& model, PlantLod& lod,
         if (seen > 0.0) {
             const float factor = static_cast<float>(target / seen);
             for (std::size_t w = 0; w < work.size(); ++w) {
-                if (work[w] < lineBase) {
-                    LodEllipsoid& e = lod.ellipsoids[ellipsoidIds[scene.items[work[w]].index]];
+                if (level.isEllipsoid(work[w])) {
+                    LodEllipsoid& e =
+                        lod.ellipsoids[level.ellipsoidIds[scene.items[work[w]].index]];
                     e.ambientOcclusion = std::clamp(e.ambientOcclusion * factor, 0.0f, 1.0f);
                 }
             }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <unordered_set>
 
 #include "sylva/core/plantlod/PlantRasterizer.h"
@@ -452,10 +453,283 @@ RasterImage bakeTile(const PlantModel& model, const OrthographicView& view, int 
     return tile;
 }
 
-}  // namespace
+// Faces and positions over all meshes (vertex indices offset per mesh, so welding acts
+// on the vertices the meshes share between their triangles).
+struct SourceFaces {
+    std::vector<Face> faces;
+    std::vector<glm::dvec3> positions;
+    std::vector<std::vector<std::size_t>> facesOfVertex;
+    std::size_t triangleCount = 0;
+};
 
-Result<BillboardCloud> BillboardCloudBuilder::build(const PlantModel& model,
-                                                    const BillboardCloudOptions& options) {
+SourceFaces collectFaces(const PlantModel& model) {
+    SourceFaces source;
+    for (std::size_t m = 0; m < model.meshes.size(); ++m) {
+        const PlantMesh& mesh = model.meshes[m];
+        const std::uint32_t base = std::uint32_t(source.positions.size());
+        for (const glm::vec3& p : mesh.positions) {
+            source.positions.emplace_back(p);
+        }
+        for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+            Face face;
+            face.vertices = {base + mesh.indices[t], base + mesh.indices[t + 1],
+                             base + mesh.indices[t + 2]};
+            face.mesh = m;
+            face.triangle = t / 3;
+            face.source = source.triangleCount++;
+            face.part = mesh.part;
+            source.faces.push_back(face);
+        }
+    }
+    source.facesOfVertex.resize(source.positions.size());
+    for (std::size_t f = 0; f < source.faces.size(); ++f) {
+        for (std::uint32_t v : source.faces[f].vertices) {
+            source.facesOfVertex[v].push_back(f);
+        }
+    }
+    return source;
+}
+
+// The planes of one level (seed 003 §3.3.8: on the finer level's welded geometry).
+struct LevelPlanes {
+    double epsilon = 0.0;
+    std::vector<Plane> planes;
+    std::vector<glm::dvec3> positions;  // welded
+    std::vector<Face> faces;            // with their planes
+};
+
+// One simplification of both parts at `epsilon`; false when more than `limit` planes
+// would be needed.
+bool simplifyParts(const SourceFaces& source, const glm::dvec3& centre, double radius, int limit,
+                   const BillboardCloudOptions& options, LevelPlanes& level) {
+    for (PlantPart part : {PlantPart::Leaf, PlantPart::Branch}) {
+        std::vector<std::size_t> members;
+        for (std::size_t f = 0; f < level.faces.size(); ++f) {
+            Face& face = level.faces[f];
+            const std::vector<glm::dvec3>& p = level.positions;
+            const glm::dvec3 cross = glm::cross(p[face.vertices[1]] - p[face.vertices[0]],
+                                                p[face.vertices[2]] - p[face.vertices[0]]);
+            face.area = 0.5 * glm::length(cross);
+            face.normal = face.area > 0.0 ? cross / (2.0 * face.area) : glm::dvec3(0.0, 0.0, 1.0);
+            if (face.part == part && face.area > 1e-14) {
+                members.push_back(f);
+            }
+        }
+        if (members.empty()) {
+            continue;
+        }
+        PartSimplifier simplifier(level.faces, level.positions, members, source.facesOfVertex,
+                                  centre, radius, level.epsilon, options);
+        if (!simplifier.run(level.planes, limit)) {
+            return false;
+        }
+    }
+    return true;
+}
+
+// Up to 16 attempts at a plane count in [minimumPlanes, limit]: epsilon grows by 1.3 when
+// there are too many planes and shrinks by 1.25 when there are too few.
+std::optional<LevelPlanes> findLevelPlanes(const SourceFaces& source,
+                                           const std::vector<glm::dvec3>& input,
+                                           const glm::dvec3& centre, double radius, double epsilon,
+                                           int limit, const BillboardCloudOptions& options) {
+    LevelPlanes level;
+    level.epsilon = epsilon;
+    for (int attempt = 0; attempt < 16; ++attempt) {
+        level.positions = input;
+        level.faces = source.faces;
+        level.planes.clear();
+        const bool complete = simplifyParts(source, centre, radius, limit, options, level);
+        const int count = int(level.planes.size());
+        if (!complete) {
+            level.epsilon *= 1.3;  // too many planes: coarser bound
+        } else if (count < options.minimumPlanes && attempt < 15) {
+            level.epsilon /= 1.25;
+        } else {
+            return level;
+        }
+    }
+    return std::nullopt;
+}
+
+// A plane's rectangle: axes along the principal direction of its faces' (original)
+// vertices in the plane, and the bounds of those vertices.
+struct PlaneRectangle {
+    glm::dvec3 origin{0.0}, right{0.0}, up{0.0};
+    glm::dvec2 low{std::numeric_limits<double>::max()};
+    glm::dvec2 high{std::numeric_limits<double>::lowest()};
+};
+
+PlaneRectangle planeRectangle(const Plane& plane, const std::vector<Face>& faces,
+                              const std::vector<glm::dvec3>& original) {
+    PlaneRectangle r;
+    const glm::dvec3 helper =
+        std::abs(plane.normal.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
+    glm::dvec3 u = glm::normalize(glm::cross(helper, plane.normal));
+    glm::dvec3 v = glm::cross(plane.normal, u);
+    r.origin = plane.normal * plane.offset;
+    double suu = 0, suv = 0, svv = 0;
+    glm::dvec2 mean(0.0);
+    std::size_t count = 0;
+    for (std::size_t face : plane.faces) {
+        for (std::uint32_t vertex : faces[face].vertices) {
+            mean += glm::dvec2(glm::dot(original[vertex] - r.origin, u),
+                               glm::dot(original[vertex] - r.origin, v));
+            ++count;
+        }
+    }
+    mean /= double(std::max<std::size_t>(count, 1));
+    for (std::size_t face : plane.faces) {
+        for (std::uint32_t vertex : faces[face].vertices) {
+            const double x = glm::dot(original[vertex] - r.origin, u) - mean.x;
+            const double y = glm::dot(original[vertex] - r.origin, v) - mean.y;
+            suu += x * x;
+            suv += x * y;
+            svv += y * y;
+        }
+    }
+    const double angle = 0.5 * std::atan2(2.0 * suv, suu - svv);
+    r.right = u * std::cos(angle) + v * std::sin(angle);
+    r.up = glm::cross(plane.normal, r.right);
+    for (std::size_t face : plane.faces) {
+        for (std::uint32_t vertex : faces[face].vertices) {
+            const glm::dvec2 p(glm::dot(original[vertex] - r.origin, r.right),
+                               glm::dot(original[vertex] - r.origin, r.up));
+            r.low = glm::min(r.low, p);
+            r.high = glm::max(r.high, p);
+        }
+    }
+    return r;
+}
+
+// The source triangles a plane's texture shows: its own faces and (§3.3.7, not for
+// cardboard) every face of the part valid for the plane that falls inside its rectangle,
+// which makes the foliage look more solid.
+std::vector<std::vector<bool>> planeMask(const PlantModel& model, const Plane& plane,
+                                         const PlaneRectangle& r, const LevelPlanes& level,
+                                         const std::vector<glm::dvec3>& original) {
+    std::vector<std::vector<bool>> mask(model.meshes.size());
+    for (std::size_t m = 0; m < model.meshes.size(); ++m) {
+        mask[m].assign(model.meshes[m].indices.size() / 3, false);
+    }
+    for (std::size_t face : plane.faces) {
+        mask[level.faces[face].mesh][level.faces[face].triangle] = true;
+    }
+    if (plane.cardboard) {
+        return mask;
+    }
+    for (const Face& face : level.faces) {
+        if (face.part != plane.part || face.plane < 0 || mask[face.mesh][face.triangle]) {
+            continue;
+        }
+        bool inside = true;
+        for (std::uint32_t vertex : face.vertices) {
+            const glm::dvec2 p(glm::dot(original[vertex] - r.origin, r.right),
+                               glm::dot(original[vertex] - r.origin, r.up));
+            inside = inside &&
+                     std::abs(glm::dot(plane.normal, level.positions[vertex]) - plane.offset) <=
+                         level.epsilon &&
+                     p.x >= r.low.x && p.x <= r.high.x && p.y >= r.low.y && p.y <= r.high.y;
+        }
+        mask[face.mesh][face.triangle] = inside;
+    }
+    return mask;
+}
+
+// A plane's quad (original geometry, which the texture shows, bounded by its rectangle
+// plus one texel of margin all round) and its baked tile.
+BillboardQuad planeQuad(const PlantModel& model, const Plane& plane, const LevelPlanes& level,
+                        const std::vector<glm::dvec3>& original, double texelsPerMetre,
+                        const BillboardCloudOptions& options, Tile& tile) {
+    PlaneRectangle r = planeRectangle(plane, level.faces, original);
+    const std::vector<std::vector<bool>> mask = planeMask(model, plane, r, level, original);
+    const int width = std::clamp(int(std::ceil((r.high.x - r.low.x) * texelsPerMetre)) + 2, 4, 512);
+    const int height =
+        std::clamp(int(std::ceil((r.high.y - r.low.y) * texelsPerMetre)) + 2, 4, 512);
+    const glm::dvec2 pad((r.high.x - r.low.x) / double(width - 2),
+                         (r.high.y - r.low.y) / double(height - 2));
+    r.low -= pad;
+    r.high += pad;
+    OrthographicView view;
+    view.origin = glm::vec3(r.origin);
+    view.right = glm::vec3(r.right);
+    view.up = glm::vec3(r.up);
+    view.minimum = glm::vec2(r.low);
+    view.maximum = glm::vec2(r.high);
+    view.lit = false;
+    tile.width = width;
+    tile.height = height;
+    tile.image = bakeTile(model, view, width, height, mask, options.alphaThreshold);
+    BillboardQuad quad;
+    const std::array<glm::dvec2, 4> corners = {r.low, glm::dvec2(r.high.x, r.low.y), r.high,
+                                               glm::dvec2(r.low.x, r.high.y)};
+    for (std::size_t c = 0; c < 4; ++c) {
+        quad.corners[c] = glm::vec3(r.origin + r.right * corners[c].x + r.up * corners[c].y);
+    }
+    quad.normal = glm::vec3(plane.normal);
+    quad.part = plane.part;
+    quad.cardboard = plane.cardboard;
+    return quad;
+}
+
+// Shelf packing, tallest tiles first, into an atlas about as wide as the square root of
+// the tiles' area (so coarse texel densities give small atlases), at most 1024 texels
+// unless one tile is wider; the quads get their atlas coordinates.
+void packAtlas(std::vector<Tile>& tiles, BillboardLevel& level) {
+    std::vector<std::size_t> order(tiles.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return tiles[a].height > tiles[b].height;
+    });
+    double tileArea = 0.0;
+    int widestTile = 4;
+    for (const Tile& tile : tiles) {
+        tileArea += double(tile.width) * double(tile.height);
+        widestTile = std::max(widestTile, tile.width);
+    }
+    int atlasWidth =
+        std::min(1024, (static_cast<int>(std::ceil(1.15 * std::sqrt(tileArea))) + 3) / 4 * 4);
+    atlasWidth = std::max(atlasWidth, widestTile);
+    int x = 0, y = 0, shelf = 0;
+    for (std::size_t i : order) {
+        if (x + tiles[i].width > atlasWidth) {
+            x = 0;
+            y += shelf;
+            shelf = 0;
+        }
+        tiles[i].x = x;
+        tiles[i].y = y;
+        x += tiles[i].width;
+        shelf = std::max(shelf, tiles[i].height);
+    }
+    const int atlasHeight = std::max(4, (y + shelf + 3) / 4 * 4);
+    level.atlas.width = atlasWidth;
+    level.atlas.height = atlasHeight;
+    level.atlas.rgba.assign(std::size_t(atlasWidth) * std::size_t(atlasHeight) * 4, 0);
+    for (std::size_t i = 0; i < tiles.size(); ++i) {
+        const Tile& tile = tiles[i];
+        for (int row = 0; row < tile.height; ++row) {
+            std::copy_n(tile.image.rgba.begin() +
+                            std::ptrdiff_t(std::size_t(row) * std::size_t(tile.width) * 4),
+                        std::size_t(tile.width) * 4,
+                        level.atlas.rgba.begin() +
+                            std::ptrdiff_t((std::size_t(tile.y + row) * std::size_t(atlasWidth) +
+                                            std::size_t(tile.x)) *
+                                           4));
+        }
+        const float u0 = float(tile.x) / float(atlasWidth);
+        const float u1 = float(tile.x + tile.width) / float(atlasWidth);
+        const float v0 = float(tile.y) / float(atlasHeight);
+        const float v1 = float(tile.y + tile.height) / float(atlasHeight);
+        // Corner 0 is the rectangle's low corner: the tile's bottom-left texel.
+        level.quads[i].atlasUvs[0] = {u0, v1};
+        level.quads[i].atlasUvs[1] = {u1, v1};
+        level.quads[i].atlasUvs[2] = {u1, v0};
+        level.quads[i].atlasUvs[3] = {u0, v0};
+    }
+}
+
+Status checkOptions(const PlantModel& model, const BillboardCloudOptions& options) {
     if (options.epsilons.empty() || options.minimumPlanes < 1 ||
         options.maximumPlanes < options.minimumPlanes || options.texelsAcrossModel < 16 ||
         options.texelsAcrossModel > 4096) {
@@ -469,259 +743,53 @@ Result<BillboardCloud> BillboardCloudBuilder::build(const PlantModel& model,
                          "': epsilons must lie in (0, 1) of the bounding radius"};
         }
     }
-    // Faces and positions over all meshes (vertex indices offset per mesh, so welding
-    // acts on the vertices the meshes share between their triangles).
-    std::vector<Face> faces;
-    std::vector<glm::dvec3> original;
-    std::size_t triangleCount = 0;
-    for (std::size_t m = 0; m < model.meshes.size(); ++m) {
-        const PlantMesh& mesh = model.meshes[m];
-        const std::uint32_t base = std::uint32_t(original.size());
-        for (const glm::vec3& p : mesh.positions) {
-            original.emplace_back(p);
-        }
-        for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-            Face face;
-            face.vertices = {base + mesh.indices[t], base + mesh.indices[t + 1],
-                             base + mesh.indices[t + 2]};
-            face.mesh = m;
-            face.triangle = t / 3;
-            face.source = triangleCount++;
-            face.part = mesh.part;
-            faces.push_back(face);
-        }
+    return Status::success();
+}
+
+}  // namespace
+
+Result<BillboardCloud> BillboardCloudBuilder::build(const PlantModel& model,
+                                                    const BillboardCloudOptions& options) {
+    if (Status valid = checkOptions(model, options); !valid) {
+        return valid.error();
     }
-    if (faces.empty()) {
+    const SourceFaces source = collectFaces(model);
+    if (source.faces.empty()) {
         return Error{"billboard cloud of '" + model.name + "': the model has no triangles"};
     }
     const glm::dvec3 minimum(model.boundsMinimum());
     const glm::dvec3 maximum(model.boundsMaximum());
     const glm::dvec3 centre = 0.5 * (minimum + maximum);
     const double radius = std::max(1e-3, 0.5 * glm::length(maximum - minimum));
-    std::vector<std::vector<std::size_t>> facesOfVertex(original.size());
-    for (std::size_t f = 0; f < faces.size(); ++f) {
-        for (std::uint32_t v : faces[f].vertices) {
-            facesOfVertex[v].push_back(f);
-        }
-    }
+    const double texelsPerMetre = double(options.texelsAcrossModel) / (2.0 * radius);
 
     BillboardCloud cloud;
-    std::vector<glm::dvec3> input = original;  // level k is built from level k−1's welded geometry
+    std::vector<glm::dvec3> input = source.positions;  // level k: level k−1's welded geometry
     int previousPlanes = std::numeric_limits<int>::max();
     for (float fraction : options.epsilons) {
-        double epsilon = double(fraction) * radius;
-        std::vector<Plane> planes;
-        std::vector<glm::dvec3> positions;
-        std::vector<Face> levelFaces;
         const int limit = std::min(options.maximumPlanes, previousPlanes - 1);
         if (limit < options.minimumPlanes) {
             break;  // no coarser level fits the budget
         }
-        bool fits = false;
-        for (int attempt = 0; attempt < 16 && !fits; ++attempt) {
-            positions = input;
-            levelFaces = faces;
-            planes.clear();
-            bool complete = true;
-            for (PlantPart part : {PlantPart::Leaf, PlantPart::Branch}) {
-                std::vector<std::size_t> members;
-                for (std::size_t f = 0; f < levelFaces.size(); ++f) {
-                    Face& face = levelFaces[f];
-                    const glm::dvec3 cross =
-                        glm::cross(positions[face.vertices[1]] - positions[face.vertices[0]],
-                                   positions[face.vertices[2]] - positions[face.vertices[0]]);
-                    face.area = 0.5 * glm::length(cross);
-                    face.normal =
-                        face.area > 0.0 ? cross / (2.0 * face.area) : glm::dvec3(0.0, 0.0, 1.0);
-                    if (face.part == part && face.area > 1e-14) {
-                        members.push_back(f);
-                    }
-                }
-                if (members.empty()) {
-                    continue;
-                }
-                PartSimplifier simplifier(levelFaces, positions, members, facesOfVertex, centre,
-                                          radius, epsilon, options);
-                if (!simplifier.run(planes, limit)) {
-                    complete = false;
-                    break;
-                }
-            }
-            const int count = int(planes.size());
-            if (!complete) {
-                epsilon *= 1.3;  // too many planes: coarser bound
-            } else if (count < options.minimumPlanes && attempt < 15) {
-                epsilon /= 1.25;
-            } else {
-                fits = true;
-            }
-        }
-        if (!fits) {
+        std::optional<LevelPlanes> planes = findLevelPlanes(
+            source, input, centre, radius, double(fraction) * radius, limit, options);
+        if (!planes) {
             break;
         }
         BillboardLevel level;
-        level.epsilon = float(epsilon);
-        level.trianglePlane.assign(triangleCount, -1);
-        for (const Face& face : levelFaces) {
+        level.epsilon = float(planes->epsilon);
+        level.trianglePlane.assign(source.triangleCount, -1);
+        for (const Face& face : planes->faces) {
             level.trianglePlane[face.source] = face.plane;
         }
-        // Quads: each plane's faces (original geometry, which the texture shows)
-        // bounded by a rectangle along their principal direction in the plane.
-        const double texelsPerMetre = double(options.texelsAcrossModel) / (2.0 * radius);
-        std::vector<Tile> tiles;
-        for (const Plane& plane : planes) {
-            const glm::dvec3 helper =
-                std::abs(plane.normal.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
-            glm::dvec3 u = glm::normalize(glm::cross(helper, plane.normal));
-            glm::dvec3 v = glm::cross(plane.normal, u);
-            const glm::dvec3 origin = plane.normal * plane.offset;
-            double suu = 0, suv = 0, svv = 0;
-            glm::dvec2 mean(0.0);
-            std::size_t count = 0;
-            for (std::size_t face : plane.faces) {
-                for (std::uint32_t vertex : levelFaces[face].vertices) {
-                    mean += glm::dvec2(glm::dot(original[vertex] - origin, u),
-                                       glm::dot(original[vertex] - origin, v));
-                    ++count;
-                }
-            }
-            mean /= double(std::max<std::size_t>(count, 1));
-            for (std::size_t face : plane.faces) {
-                for (std::uint32_t vertex : levelFaces[face].vertices) {
-                    const double x = glm::dot(original[vertex] - origin, u) - mean.x;
-                    const double y = glm::dot(original[vertex] - origin, v) - mean.y;
-                    suu += x * x;
-                    suv += x * y;
-                    svv += y * y;
-                }
-            }
-            const double angle = 0.5 * std::atan2(2.0 * suv, suu - svv);
-            const glm::dvec3 right = u * std::cos(angle) + v * std::sin(angle);
-            const glm::dvec3 up = glm::cross(plane.normal, right);
-            glm::dvec2 low(std::numeric_limits<double>::max());
-            glm::dvec2 high(std::numeric_limits<double>::lowest());
-            std::vector<std::vector<bool>> mask(model.meshes.size());
-            for (std::size_t m = 0; m < model.meshes.size(); ++m) {
-                mask[m].assign(model.meshes[m].indices.size() / 3, false);
-            }
-            for (std::size_t face : plane.faces) {
-                mask[levelFaces[face].mesh][levelFaces[face].triangle] = true;
-                for (std::uint32_t vertex : levelFaces[face].vertices) {
-                    const glm::dvec2 p(glm::dot(original[vertex] - origin, right),
-                                       glm::dot(original[vertex] - origin, up));
-                    low = glm::min(low, p);
-                    high = glm::max(high, p);
-                }
-            }
-            if (!plane.cardboard) {
-                // §3.3.7: the texture shows every face of the part valid for the plane
-                // (not only those simplified onto it) that falls inside its rectangle,
-                // which makes the foliage look more solid.
-                for (const Face& face : levelFaces) {
-                    if (face.part != plane.part || face.plane < 0 ||
-                        mask[face.mesh][face.triangle]) {
-                        continue;
-                    }
-                    bool inside = true;
-                    for (std::uint32_t vertex : face.vertices) {
-                        const glm::dvec2 p(glm::dot(original[vertex] - origin, right),
-                                           glm::dot(original[vertex] - origin, up));
-                        inside = inside &&
-                                 std::abs(glm::dot(plane.normal, positions[vertex]) -
-                                          plane.offset) <= epsilon &&
-                                 p.x >= low.x && p.x <= high.x && p.y >= low.y && p.y <= high.y;
-                    }
-                    mask[face.mesh][face.triangle] = inside;
-                }
-            }
-            const int width =
-                std::clamp(int(std::ceil((high.x - low.x) * texelsPerMetre)) + 2, 4, 512);
-            const int height =
-                std::clamp(int(std::ceil((high.y - low.y) * texelsPerMetre)) + 2, 4, 512);
-            // One texel of margin all round.
-            const glm::dvec2 pad((high.x - low.x) / double(width - 2),
-                                 (high.y - low.y) / double(height - 2));
-            low -= pad;
-            high += pad;
-            OrthographicView view;
-            view.origin = glm::vec3(origin);
-            view.right = glm::vec3(right);
-            view.up = glm::vec3(up);
-            view.minimum = glm::vec2(low);
-            view.maximum = glm::vec2(high);
-            view.lit = false;
-            Tile tile;
-            tile.width = width;
-            tile.height = height;
-            tile.image = bakeTile(model, view, width, height, mask, options.alphaThreshold);
-            tiles.push_back(std::move(tile));
-            BillboardQuad quad;
-            const std::array<glm::dvec2, 4> corners = {low, glm::dvec2(high.x, low.y), high,
-                                                       glm::dvec2(low.x, high.y)};
-            for (std::size_t c = 0; c < 4; ++c) {
-                quad.corners[c] = glm::vec3(origin + right * corners[c].x + up * corners[c].y);
-            }
-            quad.normal = glm::vec3(plane.normal);
-            quad.part = plane.part;
-            quad.cardboard = plane.cardboard;
-            level.quads.push_back(quad);
+        std::vector<Tile> tiles(planes->planes.size());
+        for (std::size_t i = 0; i < planes->planes.size(); ++i) {
+            level.quads.push_back(planeQuad(model, planes->planes[i], *planes, source.positions,
+                                            texelsPerMetre, options, tiles[i]));
         }
-        // Shelf packing, tallest tiles first, into an atlas about as wide as the square
-        // root of the tiles' area (so coarse texel densities give small atlases), at most
-        // 1024 texels unless one tile is wider.
-        std::vector<std::size_t> order(tiles.size());
-        std::iota(order.begin(), order.end(), std::size_t(0));
-        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-            return tiles[a].height > tiles[b].height;
-        });
-        double tileArea = 0.0;
-        int widestTile = 4;
-        for (const Tile& tile : tiles) {
-            tileArea += double(tile.width) * double(tile.height);
-            widestTile = std::max(widestTile, tile.width);
-        }
-        int atlasWidth =
-            std::min(1024, (static_cast<int>(std::ceil(1.15 * std::sqrt(tileArea))) + 3) / 4 * 4);
-        atlasWidth = std::max(atlasWidth, widestTile);
-        int x = 0, y = 0, shelf = 0;
-        for (std::size_t i : order) {
-            if (x + tiles[i].width > atlasWidth) {
-                x = 0;
-                y += shelf;
-                shelf = 0;
-            }
-            tiles[i].x = x;
-            tiles[i].y = y;
-            x += tiles[i].width;
-            shelf = std::max(shelf, tiles[i].height);
-        }
-        const int atlasHeight = std::max(4, (y + shelf + 3) / 4 * 4);
-        level.atlas.width = atlasWidth;
-        level.atlas.height = atlasHeight;
-        level.atlas.rgba.assign(std::size_t(atlasWidth) * std::size_t(atlasHeight) * 4, 0);
-        for (std::size_t i = 0; i < tiles.size(); ++i) {
-            const Tile& tile = tiles[i];
-            for (int row = 0; row < tile.height; ++row) {
-                std::copy_n(tile.image.rgba.begin() +
-                                std::ptrdiff_t(std::size_t(row) * std::size_t(tile.width) * 4),
-                            std::size_t(tile.width) * 4,
-                            level.atlas.rgba.begin() + std::ptrdiff_t((std::size_t(tile.y + row) *
-                                                                           std::size_t(atlasWidth) +
-                                                                       std::size_t(tile.x)) *
-                                                                      4));
-            }
-            const float u0 = float(tile.x) / float(atlasWidth);
-            const float u1 = float(tile.x + tile.width) / float(atlasWidth);
-            const float v0 = float(tile.y) / float(atlasHeight);
-            const float v1 = float(tile.y + tile.height) / float(atlasHeight);
-            // Corner 0 is the rectangle's low corner: the tile's bottom-left texel.
-            level.quads[i].atlasUvs[0] = {u0, v1};
-            level.quads[i].atlasUvs[1] = {u1, v1};
-            level.quads[i].atlasUvs[2] = {u1, v0};
-            level.quads[i].atlasUvs[3] = {u0, v0};
-        }
-        previousPlanes = int(planes.size());
-        input = positions;
+        packAtlas(tiles, level);
+        previousPlanes = int(planes->planes.size());
+        input = std::move(planes->positions);
         cloud.levels.push_back(std::move(level));
     }
     if (cloud.levels.empty()) {

@@ -113,4 +113,17 @@ double multiScaleRmse(const std::vector<double>& levelSquaredErrors) {
     return sum / static_cast<double>(levelSquaredErrors.size());
 }
 
+std::vector<double> meanOverViews(const std::vector<std::vector<double>>& perView) {
+    SYLVA_CHECK(!perView.empty());
+    const int views = static_cast<int>(perView.size());
+    std::vector<double> mean(perView[0].size(), 0.0);
+    for (const std::vector<double>& levels : perView) {
+        SYLVA_CHECK(levels.size() == mean.size());
+        for (std::size_t k = 0; k < levels.size(); ++k) {
+            mean[k] += levels[k] / views;
+        }
+    }
+    return mean;
+}
+
 }  // namespace sylva

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "TexelColour.h"
+
 namespace sylva {
 
 namespace {
@@ -158,6 +160,93 @@ private:
         return std::max(radius, 0.0005f);
     }
 
+    // Curvature (paper §4.3): nCurve spread over the segments, or split into a first
+    // half and a back-bend half when nCurveBack is set, plus nCurveV noise; then the
+    // upward attraction of §4.8.
+    void bend(Frame& frame, const StemLevelParameters& level, int stemLevel, int segment,
+              int resolution) {
+        float bend;
+        if (level.curveBack == 0.0f) {
+            bend = level.curve / float(resolution);
+        } else {
+            const float half = std::max(1.0f, float(resolution) / 2.0f);
+            bend = (segment < resolution / 2 ? level.curve : level.curveBack) / half;
+        }
+        bend += level.curveVariation * random_.symmetric() / float(resolution);
+        if (segment == 0) {
+            bend *= 0.5f;
+        }
+        frame.rotate(frame.side, bend);
+        if (stemLevel >= 2 && parameters_.attractionUp != 0.0f) {
+            // Paper §4.8 (AttractionUp): bend towards the sky in proportion to the
+            // declination, never past vertical.
+            const glm::vec3 axis = glm::cross(frame.direction, glm::vec3(0.0f, 0.0f, 1.0f));
+            const float axisLength = glm::length(axis);
+            if (axisLength > 1e-4f) {
+                const float declination = std::acos(std::clamp(frame.direction.z, -1.0f, 1.0f));
+                const float amount = parameters_.attractionUp * declination *
+                                     std::abs(std::sin(declination)) / float(resolution);
+                frame.rotate(axis / axisLength, std::clamp(amount, -declination, declination));
+            }
+        }
+    }
+
+    // Splitting (paper §4.4): nSegSplits clones per segment, error-diffused; the trunk's
+    // base splits happen where the crown begins.
+    int clonesAfter(const StemStart& start, const StemLevelParameters& level, int segment,
+                    int resolution, float offset, float& splitError) {
+        if (segment + 1 >= resolution) {
+            return 0;
+        }
+        if (start.level == 0 && parameters_.baseSplits > 0 &&
+            offset >= parameters_.baseSize * start.length && !baseSplitDone_) {
+            baseSplitDone_ = true;
+            return parameters_.baseSplits;
+        }
+        if (level.segmentSplits > 0.0f) {
+            const float wanted = level.segmentSplits + splitError;
+            const int clones = int(std::lround(wanted));
+            splitError = wanted - float(clones);
+            return clones;
+        }
+        return 0;
+    }
+
+    // The stem split at the end of `segment` (skeleton `index`, point `position`):
+    // `clones` deflected continuations and the original with the last deflection, each
+    // a new tube (so every clone is alike), queued to grow.
+    void split(const StemStart& start, const StemLevelParameters& level, int clones, Frame frame,
+               int segment, int index, const glm::vec3& position, float offset, float splitError) {
+        const float share = start.childDensity / float(clones + 1);
+        const auto continueAs = [&](const Frame& direction) {
+            StemStart continuation = start;
+            continuation.position = position;
+            continuation.frame = direction;
+            continuation.parentSegment = index;
+            continuation.firstSegment = segment + 1;
+            continuation.offsetStart = offset;
+            continuation.splitError = splitError;
+            continuation.childDensity = share;
+            pending_.push_back(continuation);
+        };
+        const float baseAzimuth = 2.0f * kPi * random_.uniform();
+        for (int clone = 0; clone <= clones; ++clone) {
+            const float angle =
+                std::max(0.0f, level.splitAngle + level.splitAngleVariation * random_.symmetric());
+            const float azimuth = baseAzimuth + 2.0f * kPi * float(clone) / float(clones + 1);
+            const glm::vec3 axis =
+                glm::normalize(rotateAbout(frame.side, frame.direction, azimuth));
+            Frame cloneFrame = frame;
+            cloneFrame.rotate(axis, angle);
+            if (clone == clones) {
+                frame = cloneFrame;  // the original stem continues with the last deflection
+                continue;
+            }
+            continueAs(cloneFrame);
+        }
+        continueAs(frame);
+    }
+
     void grow(StemStart start) {
         const StemLevelParameters& level = parameters_.levels[std::size_t(start.level)];
         const int resolution = std::max(1, level.curveResolution);
@@ -176,37 +265,9 @@ private:
         stem.radii.push_back(radiusAt(start, start.offsetStart));
         float splitError = start.splitError;
         int parentSegment = start.parentSegment;
-        const StemStart original = start;
         for (int segment = start.firstSegment; segment < resolution; ++segment) {
-            // Curvature (paper §4.3): nCurve spread over the segments, or split into a
-            // first half and a back-bend half when nCurveBack is set, plus nCurveV noise.
             if (segment > 0 || start.level > 0) {
-                float bend;
-                if (level.curveBack == 0.0f) {
-                    bend = level.curve / float(resolution);
-                } else {
-                    const float half = std::max(1.0f, float(resolution) / 2.0f);
-                    bend = (segment < resolution / 2 ? level.curve : level.curveBack) / half;
-                }
-                bend += level.curveVariation * random_.symmetric() / float(resolution);
-                if (segment == 0) {
-                    bend *= 0.5f;
-                }
-                frame.rotate(frame.side, bend);
-                if (start.level >= 2 && parameters_.attractionUp != 0.0f) {
-                    // Paper §4.8 (AttractionUp): bend towards the sky in proportion to the
-                    // declination, never past vertical.
-                    const glm::vec3 axis = glm::cross(frame.direction, glm::vec3(0.0f, 0.0f, 1.0f));
-                    const float axisLength = glm::length(axis);
-                    if (axisLength > 1e-4f) {
-                        const float declination =
-                            std::acos(std::clamp(frame.direction.z, -1.0f, 1.0f));
-                        const float amount = parameters_.attractionUp * declination *
-                                             std::abs(std::sin(declination)) / float(resolution);
-                        frame.rotate(axis / axisLength,
-                                     std::clamp(amount, -declination, declination));
-                    }
-                }
+                bend(frame, level, start.level, segment, resolution);
             }
             const glm::vec3 next = position + frame.direction * segmentLength;
             const float offset0 = float(segment) * segmentLength;
@@ -225,62 +286,13 @@ private:
             stem.radii.push_back(piece.endRadius);
             parentSegment = index;
             position = next;
-
-            // Splitting (paper §4.4): nSegSplits clones per segment, error-diffused; the
-            // trunk's base splits happen where the crown begins.
-            int clones = 0;
-            if (segment + 1 < resolution) {
-                if (start.level == 0 && parameters_.baseSplits > 0 &&
-                    offset1 >= parameters_.baseSize * start.length && !baseSplitDone_) {
-                    clones = parameters_.baseSplits;
-                    baseSplitDone_ = true;
-                } else if (level.segmentSplits > 0.0f) {
-                    const float wanted = level.segmentSplits + splitError;
-                    clones = int(std::lround(wanted));
-                    splitError = wanted - float(clones);
-                }
-            }
+            const int clones = clonesAfter(start, level, segment, resolution, offset1, splitError);
             if (clones > 0) {
-                const float share = start.childDensity / float(clones + 1);
-                const float baseAzimuth = 2.0f * kPi * random_.uniform();
-                for (int clone = 0; clone <= clones; ++clone) {
-                    const float angle = std::max(
-                        0.0f, level.splitAngle + level.splitAngleVariation * random_.symmetric());
-                    const float azimuth =
-                        baseAzimuth + 2.0f * kPi * float(clone) / float(clones + 1);
-                    const glm::vec3 axis =
-                        glm::normalize(rotateAbout(frame.side, frame.direction, azimuth));
-                    Frame cloneFrame = frame;
-                    cloneFrame.rotate(axis, angle);
-                    if (clone == clones) {
-                        // The original stem continues with the last deflection.
-                        frame = cloneFrame;
-                        continue;
-                    }
-                    StemStart continuation = start;
-                    continuation.position = next;
-                    continuation.frame = cloneFrame;
-                    continuation.parentSegment = index;
-                    continuation.firstSegment = segment + 1;
-                    continuation.offsetStart = offset1;
-                    continuation.splitError = splitError;
-                    continuation.childDensity = share;
-                    pending_.push_back(continuation);
-                }
-                // The original continues as a new tube too, so every clone is alike.
-                StemStart continuation = start;
-                continuation.position = next;
-                continuation.frame = frame;
-                continuation.parentSegment = index;
-                continuation.firstSegment = segment + 1;
-                continuation.offsetStart = offset1;
-                continuation.splitError = splitError;
-                continuation.childDensity = share;
-                pending_.push_back(continuation);
+                split(start, level, clones, frame, segment, index, next, offset1, splitError);
                 break;
             }
         }
-        spawnChildren(original, stem);
+        spawnChildren(start, stem);
         stems.push_back(std::move(stem));
     }
 
@@ -448,153 +460,183 @@ float smoothstep(float edge0, float edge1, float x) {
     return t * t * (3.0f - 2.0f * t);
 }
 
-std::uint8_t toSrgb8(float linear) {
-    linear = std::clamp(linear, 0.0f, 1.0f);
-    const float encoded =
-        linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
-    return std::uint8_t(std::lround(encoded * 255.0f));
+// The presets, one function each (listed in kPresets below).
+TreeParameters oakPreset() {
+    TreeParameters tree;
+    // After the paper's black oak (Table 1), broadened into a round crown.
+    tree.shape = TreeShape::Hemispherical;
+    tree.baseSize = 0.25f;
+    tree.scale = 12.0f;
+    tree.scaleVariation = 1.0f;
+    tree.ratio = 0.025f;
+    tree.ratioPower = 1.3f;
+    tree.flare = 1.0f;
+    tree.baseSplits = 2;
+    tree.levels = {
+        {1.0f, 0.0f, 0.95f, 8, 0.0f, 0.0f, degrees(50.0f), 0.3f, degrees(25.0f), degrees(5.0f), 0,
+         0, 0, 0, 0, 10},
+        {0.6f, 0.1f, 0.9f, 6, degrees(-25.0f), degrees(0.0f), degrees(90.0f), 0.15f, degrees(20.0f),
+         0.0f, 36, degrees(50.0f), degrees(-25.0f), degrees(140.0f), degrees(20.0f), 6},
+        {0.4f, 0.05f, 1.0f, 3, 0.0f, 0.0f, degrees(60.0f), 0.0f, 0.0f, 0.0f, 28, degrees(45.0f),
+         degrees(10.0f), degrees(140.0f), degrees(20.0f), 4},
+    };
+    tree.leaves = 22;
+    tree.leafScale = 0.2f;
+    tree.leafScaleX = 0.65f;
+    tree.leafDownAngle = degrees(50.0f);
+    tree.leafRotate = degrees(137.5f);
+    tree.barkColor = {0.10f, 0.075f, 0.05f};
+    tree.leafColor = {0.05f, 0.16f, 0.025f};
+    tree.attractionUp = 0.5f;
+    return tree;
 }
+
+TreeParameters coniferPreset() {
+    TreeParameters tree;
+    // A fir: conical crown, whorls of near-horizontal branches drooping at the base.
+    tree.shape = TreeShape::Conical;
+    tree.baseSize = 0.12f;
+    tree.scale = 16.0f;
+    tree.scaleVariation = 1.5f;
+    tree.ratio = 0.018f;
+    tree.ratioPower = 1.4f;
+    tree.flare = 0.5f;
+    tree.levels = {
+        {1.0f, 0.0f, 1.0f, 12, 0.0f, 0.0f, degrees(8.0f), 0.0f, 0.0f, 0.0f, 0, 0, 0, 0, 0, 8},
+        {0.32f, 0.03f, 1.0f, 4, degrees(-10.0f), 0.0f, degrees(15.0f), 0.0f, 0.0f, 0.0f, 70,
+         degrees(75.0f), degrees(-25.0f), degrees(137.5f), degrees(10.0f), 4},
+        {0.4f, 0.05f, 1.0f, 2, 0.0f, 0.0f, degrees(10.0f), 0.0f, 0.0f, 0.0f, 14, degrees(55.0f),
+         degrees(10.0f), degrees(-90.0f), degrees(15.0f), 3},
+    };
+    tree.leaves = 22;
+    tree.leafScale = 0.34f;
+    tree.leafScaleX = 0.55f;
+    tree.leafDownAngle = degrees(40.0f);
+    tree.leafRotate = degrees(-90.0f);
+    tree.needles = true;
+    tree.barkColor = {0.08f, 0.05f, 0.035f};
+    tree.leafColor = {0.015f, 0.07f, 0.025f};
+    tree.attractionUp = 0.2f;
+    return tree;
+}
+
+TreeParameters birchPreset() {
+    TreeParameters tree;
+    // Slender, white bark, a tall flame-shaped crown with drooping twigs.
+    tree.shape = TreeShape::TendFlame;
+    tree.baseSize = 0.3f;
+    tree.scale = 15.0f;
+    tree.scaleVariation = 1.5f;
+    tree.ratio = 0.014f;
+    tree.ratioPower = 1.2f;
+    tree.flare = 0.4f;
+    tree.levels = {
+        {1.0f, 0.0f, 1.0f, 10, 0.0f, 0.0f, degrees(20.0f), 0.0f, 0.0f, 0.0f, 0, 0, 0, 0, 0, 8},
+        {0.35f, 0.05f, 1.0f, 5, degrees(-35.0f), 0.0f, degrees(30.0f), 0.0f, 0.0f, 0.0f, 35,
+         degrees(40.0f), degrees(10.0f), degrees(137.5f), degrees(15.0f), 5},
+        {0.55f, 0.1f, 1.0f, 4, degrees(-70.0f), 0.0f, degrees(30.0f), 0.0f, 0.0f, 0.0f, 16,
+         degrees(40.0f), degrees(10.0f), degrees(140.0f), degrees(20.0f), 3},
+    };
+    tree.leaves = 18;
+    tree.leafScale = 0.14f;
+    tree.leafScaleX = 0.7f;
+    tree.leafDownAngle = degrees(60.0f);
+    tree.leafRotate = degrees(137.5f);
+    tree.barkColor = {0.75f, 0.72f, 0.66f};
+    tree.leafColor = {0.09f, 0.25f, 0.03f};
+    tree.attractionUp = -0.6f;
+    return tree;
+}
+
+TreeParameters bushPreset() {
+    TreeParameters tree;
+    // A short stump that fans out at once into many upright stems.
+    tree.shape = TreeShape::Hemispherical;
+    tree.baseSize = 0.0f;
+    tree.scale = 0.4f;
+    tree.scaleVariation = 0.05f;
+    tree.ratio = 0.09f;
+    tree.ratioPower = 1.1f;
+    tree.flare = 0.2f;
+    tree.levels = {
+        {1.0f, 0.0f, 0.5f, 2, 0.0f, 0.0f, degrees(10.0f), 0.0f, 0.0f, 0.0f, 0, 0, 0, 0, 0, 6},
+        {4.5f, 0.8f, 0.9f, 5, degrees(-40.0f), 0.0f, degrees(40.0f), 0.15f, degrees(20.0f), 0.0f,
+         14, degrees(35.0f), degrees(20.0f), degrees(137.5f), degrees(30.0f), 5},
+        {0.45f, 0.1f, 1.0f, 3, 0.0f, 0.0f, degrees(40.0f), 0.0f, 0.0f, 0.0f, 18, degrees(50.0f),
+         degrees(15.0f), degrees(140.0f), degrees(20.0f), 3},
+    };
+    tree.leaves = 12;
+    tree.leafScale = 0.09f;
+    tree.leafScaleX = 0.6f;
+    tree.leafDownAngle = degrees(50.0f);
+    tree.leafRotate = degrees(137.5f);
+    tree.barkColor = {0.12f, 0.09f, 0.06f};
+    tree.leafColor = {0.06f, 0.18f, 0.03f};
+    tree.attractionUp = 0.3f;
+    return tree;
+}
+
+TreeParameters palmPreset() {
+    TreeParameters tree;
+    // A coconut-like palm: one slender, slightly bent trunk without branches and a
+    // crown of drooping fronds at its top, leaflets alternating along each frond.
+    tree.shape = TreeShape::Cylindrical;
+    tree.baseSize = 0.9f;
+    tree.scale = 9.0f;
+    tree.scaleVariation = 1.0f;
+    tree.ratio = 0.025f;
+    tree.ratioPower = 2.0f;
+    tree.flare = 0.4f;
+    tree.levels = {
+        {1.0f, 0.0f, 0.3f, 10, degrees(15.0f), 0.0f, degrees(6.0f), 0.0f, 0.0f, 0.0f, 0, 0, 0, 0, 0,
+         8},
+        {0.4f, 0.05f, 1.0f, 6, degrees(110.0f), 0.0f, degrees(10.0f), 0.0f, 0.0f, 0.0f, 22,
+         degrees(70.0f), degrees(20.0f), degrees(137.5f), degrees(10.0f), 4},
+    };
+    tree.leaves = 40;
+    tree.leafScale = 0.55f;
+    tree.leafScaleX = 0.14f;
+    tree.leafDownAngle = degrees(65.0f);
+    tree.leafRotate = degrees(-90.0f);
+    tree.barkColor = {0.22f, 0.17f, 0.12f};
+    tree.leafColor = {0.07f, 0.2f, 0.03f};
+    return tree;
+}
+
+struct Preset {
+    const char* name;
+    TreeParameters (*make)();
+};
+
+constexpr Preset kPresets[] = {{"oak", oakPreset},
+                               {"conifer", coniferPreset},
+                               {"birch", birchPreset},
+                               {"bush", bushPreset},
+                               {"palm", palmPreset}};
 
 }  // namespace
 
 std::vector<std::string> PlantGenerator::presetNames() {
-    return {"oak", "conifer", "birch", "bush", "palm"};
+    std::vector<std::string> names;
+    for (const Preset& preset : kPresets) {
+        names.emplace_back(preset.name);
+    }
+    return names;
 }
 
 Result<TreeParameters> PlantGenerator::preset(const std::string& name) {
-    TreeParameters tree;
-    tree.name = name;
-    if (name == "oak") {
-        // After the paper's black oak (Table 1), broadened into a round crown.
-        tree.shape = TreeShape::Hemispherical;
-        tree.baseSize = 0.25f;
-        tree.scale = 12.0f;
-        tree.scaleVariation = 1.0f;
-        tree.ratio = 0.025f;
-        tree.ratioPower = 1.3f;
-        tree.flare = 1.0f;
-        tree.baseSplits = 2;
-        tree.levels = {
-            {1.0f, 0.0f, 0.95f, 8, 0.0f, 0.0f, degrees(50.0f), 0.3f, degrees(25.0f), degrees(5.0f),
-             0, 0, 0, 0, 0, 10},
-            {0.6f, 0.1f, 0.9f, 6, degrees(-25.0f), degrees(0.0f), degrees(90.0f), 0.15f,
-             degrees(20.0f), 0.0f, 36, degrees(50.0f), degrees(-25.0f), degrees(140.0f),
-             degrees(20.0f), 6},
-            {0.4f, 0.05f, 1.0f, 3, 0.0f, 0.0f, degrees(60.0f), 0.0f, 0.0f, 0.0f, 28, degrees(45.0f),
-             degrees(10.0f), degrees(140.0f), degrees(20.0f), 4},
-        };
-        tree.leaves = 22;
-        tree.leafScale = 0.2f;
-        tree.leafScaleX = 0.65f;
-        tree.leafDownAngle = degrees(50.0f);
-        tree.leafRotate = degrees(137.5f);
-        tree.barkColor = {0.10f, 0.075f, 0.05f};
-        tree.leafColor = {0.05f, 0.16f, 0.025f};
-        tree.attractionUp = 0.5f;
-    } else if (name == "conifer") {
-        // A fir: conical crown, whorls of near-horizontal branches drooping at the base.
-        tree.shape = TreeShape::Conical;
-        tree.baseSize = 0.12f;
-        tree.scale = 16.0f;
-        tree.scaleVariation = 1.5f;
-        tree.ratio = 0.018f;
-        tree.ratioPower = 1.4f;
-        tree.flare = 0.5f;
-        tree.levels = {
-            {1.0f, 0.0f, 1.0f, 12, 0.0f, 0.0f, degrees(8.0f), 0.0f, 0.0f, 0.0f, 0, 0, 0, 0, 0, 8},
-            {0.32f, 0.03f, 1.0f, 4, degrees(-10.0f), 0.0f, degrees(15.0f), 0.0f, 0.0f, 0.0f, 70,
-             degrees(75.0f), degrees(-25.0f), degrees(137.5f), degrees(10.0f), 4},
-            {0.4f, 0.05f, 1.0f, 2, 0.0f, 0.0f, degrees(10.0f), 0.0f, 0.0f, 0.0f, 14, degrees(55.0f),
-             degrees(10.0f), degrees(-90.0f), degrees(15.0f), 3},
-        };
-        tree.leaves = 22;
-        tree.leafScale = 0.34f;
-        tree.leafScaleX = 0.55f;
-        tree.leafDownAngle = degrees(40.0f);
-        tree.leafRotate = degrees(-90.0f);
-        tree.needles = true;
-        tree.barkColor = {0.08f, 0.05f, 0.035f};
-        tree.leafColor = {0.015f, 0.07f, 0.025f};
-        tree.attractionUp = 0.2f;
-    } else if (name == "birch") {
-        // Slender, white bark, a tall flame-shaped crown with drooping twigs.
-        tree.shape = TreeShape::TendFlame;
-        tree.baseSize = 0.3f;
-        tree.scale = 15.0f;
-        tree.scaleVariation = 1.5f;
-        tree.ratio = 0.014f;
-        tree.ratioPower = 1.2f;
-        tree.flare = 0.4f;
-        tree.levels = {
-            {1.0f, 0.0f, 1.0f, 10, 0.0f, 0.0f, degrees(20.0f), 0.0f, 0.0f, 0.0f, 0, 0, 0, 0, 0, 8},
-            {0.35f, 0.05f, 1.0f, 5, degrees(-35.0f), 0.0f, degrees(30.0f), 0.0f, 0.0f, 0.0f, 35,
-             degrees(40.0f), degrees(10.0f), degrees(137.5f), degrees(15.0f), 5},
-            {0.55f, 0.1f, 1.0f, 4, degrees(-70.0f), 0.0f, degrees(30.0f), 0.0f, 0.0f, 0.0f, 16,
-             degrees(40.0f), degrees(10.0f), degrees(140.0f), degrees(20.0f), 3},
-        };
-        tree.leaves = 18;
-        tree.leafScale = 0.14f;
-        tree.leafScaleX = 0.7f;
-        tree.leafDownAngle = degrees(60.0f);
-        tree.leafRotate = degrees(137.5f);
-        tree.barkColor = {0.75f, 0.72f, 0.66f};
-        tree.leafColor = {0.09f, 0.25f, 0.03f};
-        tree.attractionUp = -0.6f;
-    } else if (name == "bush") {
-        // A short stump that fans out at once into many upright stems.
-        tree.shape = TreeShape::Hemispherical;
-        tree.baseSize = 0.0f;
-        tree.scale = 0.4f;
-        tree.scaleVariation = 0.05f;
-        tree.ratio = 0.09f;
-        tree.ratioPower = 1.1f;
-        tree.flare = 0.2f;
-        tree.levels = {
-            {1.0f, 0.0f, 0.5f, 2, 0.0f, 0.0f, degrees(10.0f), 0.0f, 0.0f, 0.0f, 0, 0, 0, 0, 0, 6},
-            {4.5f, 0.8f, 0.9f, 5, degrees(-40.0f), 0.0f, degrees(40.0f), 0.15f, degrees(20.0f),
-             0.0f, 14, degrees(35.0f), degrees(20.0f), degrees(137.5f), degrees(30.0f), 5},
-            {0.45f, 0.1f, 1.0f, 3, 0.0f, 0.0f, degrees(40.0f), 0.0f, 0.0f, 0.0f, 18, degrees(50.0f),
-             degrees(15.0f), degrees(140.0f), degrees(20.0f), 3},
-        };
-        tree.leaves = 12;
-        tree.leafScale = 0.09f;
-        tree.leafScaleX = 0.6f;
-        tree.leafDownAngle = degrees(50.0f);
-        tree.leafRotate = degrees(137.5f);
-        tree.barkColor = {0.12f, 0.09f, 0.06f};
-        tree.leafColor = {0.06f, 0.18f, 0.03f};
-        tree.attractionUp = 0.3f;
-    } else if (name == "palm") {
-        // A coconut-like palm: one slender, slightly bent trunk without branches and a
-        // crown of drooping fronds at its top, leaflets alternating along each frond.
-        tree.shape = TreeShape::Cylindrical;
-        tree.baseSize = 0.9f;
-        tree.scale = 9.0f;
-        tree.scaleVariation = 1.0f;
-        tree.ratio = 0.025f;
-        tree.ratioPower = 2.0f;
-        tree.flare = 0.4f;
-        tree.levels = {
-            {1.0f, 0.0f, 0.3f, 10, degrees(15.0f), 0.0f, degrees(6.0f), 0.0f, 0.0f, 0.0f, 0, 0, 0,
-             0, 0, 8},
-            {0.4f, 0.05f, 1.0f, 6, degrees(110.0f), 0.0f, degrees(10.0f), 0.0f, 0.0f, 0.0f, 22,
-             degrees(70.0f), degrees(20.0f), degrees(137.5f), degrees(10.0f), 4},
-        };
-        tree.leaves = 40;
-        tree.leafScale = 0.55f;
-        tree.leafScaleX = 0.14f;
-        tree.leafDownAngle = degrees(65.0f);
-        tree.leafRotate = degrees(-90.0f);
-        tree.barkColor = {0.22f, 0.17f, 0.12f};
-        tree.leafColor = {0.07f, 0.2f, 0.03f};
-    } else {
-        std::string names;
-        for (const std::string& known : presetNames()) {
-            names += (names.empty() ? "" : ", ") + known;
+    for (const Preset& preset : kPresets) {
+        if (name == preset.name) {
+            TreeParameters tree = preset.make();
+            tree.name = name;
+            return tree;
         }
-        return Error{"unknown plant preset '" + name + "' (presets: " + names + ")"};
     }
-    return tree;
+    std::string names;
+    for (const std::string& known : presetNames()) {
+        names += (names.empty() ? "" : ", ") + known;
+    }
+    return Error{"unknown plant preset '" + name + "' (presets: " + names + ")"};
 }
 
 PlantTexture PlantGenerator::drawLeafTexture(int size, glm::vec3 linearColor, bool needles) {
@@ -656,14 +698,135 @@ PlantTexture PlantGenerator::drawLeafTexture(int size, glm::vec3 linearColor, bo
             // Veins a little lighter and yellower than the blade.
             const glm::vec3 colour =
                 linearColor * brightness + glm::vec3(0.03f, 0.03f, 0.0f) * (1.0f - brightness);
-            pixel[0] = toSrgb8(colour.r);
-            pixel[1] = toSrgb8(colour.g);
-            pixel[2] = toSrgb8(colour.b);
+            pixel[0] = linearToTexel(colour.r);
+            pixel[1] = linearToTexel(colour.g);
+            pixel[2] = linearToTexel(colour.b);
             pixel[3] = std::uint8_t(std::lround(coverage / 16.0f * 255.0f));
         }
     }
     return texture;
 }
+
+namespace {
+
+// The leaf-bearing stems (the last stem level) and how many leaves each gets: weighted
+// like one more level of children (paper §4.7: Leaves × ShapeRatio(4, offset / parent
+// length)) and distributed to the exact target by largest remainders.
+struct LeafDistribution {
+    std::vector<std::size_t> bearers;  // indices into the stems
+    std::vector<int> counts;
+    float quality = 1.0f;  // the paper's leaf quality: weight sum / target
+};
+
+LeafDistribution distributeLeaves(const TreeParameters& parameters, const std::vector<Stem>& stems,
+                                  std::optional<int> leafCount) {
+    const int lastLevel = int(parameters.levels.size()) - 1;
+    LeafDistribution result;
+    std::vector<double> weights;
+    for (std::size_t i = 0; i < stems.size(); ++i) {
+        const Stem& stem = stems[i];
+        if (stem.level != lastLevel || stem.points.size() < 2) {
+            continue;
+        }
+        const float parentRatio =
+            stem.parentLength > 0.0f ? stem.offsetInParent / stem.parentLength : 0.0f;
+        const float grown =
+            float(stem.points.size() - 1) /
+            float(std::max(1, parameters.levels[std::size_t(lastLevel)].curveResolution));
+        result.bearers.push_back(i);
+        weights.push_back(double(parameters.leaves) *
+                          shapeRatio(TreeShape::TaperedCylindrical, parentRatio) *
+                          stem.childDensity * grown);
+    }
+    const double weightSum = std::accumulate(weights.begin(), weights.end(), 0.0);
+    result.counts.assign(result.bearers.size(), 0);
+    int target = leafCount ? *leafCount : int(std::lround(weightSum));
+    if (result.bearers.empty() || weightSum <= 0.0) {
+        target = 0;
+    }
+    if (target > 0) {
+        std::vector<std::pair<double, std::size_t>> remainders;
+        int assigned = 0;
+        for (std::size_t i = 0; i < result.bearers.size(); ++i) {
+            const double exact = weights[i] / weightSum * double(target);
+            result.counts[i] = int(std::floor(exact));
+            assigned += result.counts[i];
+            remainders.emplace_back(exact - std::floor(exact), i);
+        }
+        std::stable_sort(remainders.begin(), remainders.end(),
+                         [](const auto& a, const auto& b) { return a.first > b.first; });
+        for (std::size_t k = 0; assigned < target; ++k, ++assigned) {
+            result.counts[remainders[k % remainders.size()].second] += 1;
+        }
+    }
+    result.quality = target > 0 && weightSum > 0.0 ? float(weightSum / double(target)) : 1.0f;
+    return result;
+}
+
+// One leaf quad at `position` on a stem whose frame there is `frame`: turned about the
+// stem by the running `rotation`, tilted down, its face turned towards the sky (the
+// paper's leaf bend: the blade's width axis horizontal, perpendicular to the leaf).
+void appendLeaf(PlantMesh& leaves, const TreeParameters& parameters, Frame frame,
+                const glm::vec3& position, float& rotation, float leafLength, float leafWidth,
+                Random& random) {
+    rotation += parameters.leafRotate >= 0.0f ? parameters.leafRotate + 0.3f * random.symmetric()
+                                              : kPi + 0.3f * random.symmetric();
+    const glm::vec3 tilt = glm::normalize(rotateAbout(frame.side, frame.direction, rotation));
+    frame.rotate(tilt, parameters.leafDownAngle + 0.2f * random.symmetric());
+    glm::vec3 along = frame.direction;
+    glm::vec3 across = glm::cross(glm::vec3(0.0f, 0.0f, 1.0f), along);
+    if (glm::length(across) < 1e-3f) {
+        across = frame.side;
+    }
+    across = glm::normalize(rotateAbout(glm::normalize(across), along, 0.4f * random.symmetric()));
+    glm::vec3 normal = glm::normalize(glm::cross(along, across));
+    if (normal.z < 0.0f) {
+        normal = -normal;
+    }
+    const glm::vec3 base = position;
+    const glm::vec3 tip = position + along * leafLength;
+    const glm::vec3 halfWidth = across * (0.5f * leafWidth);
+    const std::uint32_t first = std::uint32_t(leaves.positions.size());
+    // Texture: v = 1 at the stalk (bottom row), v = 0 at the tip.
+    leaves.positions.insert(leaves.positions.end(),
+                            {base - halfWidth, base + halfWidth, tip + halfWidth, tip - halfWidth});
+    leaves.uvs.insert(leaves.uvs.end(), {{0.0f, 1.0f}, {1.0f, 1.0f}, {1.0f, 0.0f}, {0.0f, 0.0f}});
+    leaves.normals.insert(leaves.normals.end(), 4, normal);
+    leaves.indices.insert(leaves.indices.end(),
+                          {first, first + 1, first + 2, first, first + 2, first + 3});
+}
+
+// The leaves of every bearer, spread evenly along it with jitter; the leaf size makes
+// up for the leaf quality (fewer leaves than the weights ask for are larger).
+PlantMesh makeLeaves(const TreeParameters& parameters, const std::vector<Stem>& stems,
+                     const LeafDistribution& distribution, std::uint64_t seed) {
+    const float leafLength = parameters.leafScale * std::sqrt(distribution.quality);
+    const float leafWidth = leafLength * parameters.leafScaleX;
+    PlantMesh leaves;
+    leaves.part = PlantPart::Leaf;
+    leaves.material = 1;
+    leaves.name = "leaves";
+    for (std::size_t b = 0; b < distribution.bearers.size(); ++b) {
+        const Stem& stem = stems[distribution.bearers[b]];
+        Random random(seed * 0x2545F4914F6CDD1Dull +
+                      distribution.bearers[b] * 0x9E3779B97F4A7C15ull + 0x1EAF);
+        float rotation = 2.0f * kPi * random.uniform();
+        const int count = distribution.counts[b];
+        for (int i = 0; i < count; ++i) {
+            const float local = float(stem.points.size() - 1) *
+                                (float(i) + 0.5f + 0.4f * random.symmetric()) / float(count);
+            const std::size_t segment =
+                std::min(stem.points.size() - 2, std::size_t(std::max(0.0f, local)));
+            const float t = std::clamp(local - float(segment), 0.0f, 1.0f);
+            const glm::vec3 position = glm::mix(stem.points[segment], stem.points[segment + 1], t);
+            appendLeaf(leaves, parameters, stem.frames[segment + 1], position, rotation, leafLength,
+                       leafWidth, random);
+        }
+    }
+    return leaves;
+}
+
+}  // namespace
 
 Result<PlantModel> PlantGenerator::generate(const TreeParameters& parameters,
                                             const PlantGeneratorOptions& options) {
@@ -699,104 +862,9 @@ Result<PlantModel> PlantGenerator::generate(const TreeParameters& parameters,
         appendTube(branches, stem, parameters.levels[std::size_t(stem.level)].radialSegments);
     }
     model.skeleton = builder.skeleton;
-
-    // Leaves on the last stem level, weighted like one more level of children (paper
-    // §4.7: Leaves × ShapeRatio(4, offset / parent length)) and distributed to the exact
-    // target by largest remainders.
-    const int lastLevel = int(parameters.levels.size()) - 1;
-    std::vector<std::size_t> bearers;
-    std::vector<double> weights;
-    for (std::size_t i = 0; i < builder.stems.size(); ++i) {
-        const Stem& stem = builder.stems[i];
-        if (stem.level != lastLevel || stem.points.size() < 2) {
-            continue;
-        }
-        const float parentRatio =
-            stem.parentLength > 0.0f ? stem.offsetInParent / stem.parentLength : 0.0f;
-        const float grown =
-            float(stem.points.size() - 1) /
-            float(std::max(1, parameters.levels[std::size_t(lastLevel)].curveResolution));
-        bearers.push_back(i);
-        weights.push_back(double(parameters.leaves) *
-                          shapeRatio(TreeShape::TaperedCylindrical, parentRatio) *
-                          stem.childDensity * grown);
-    }
-    const double weightSum = std::accumulate(weights.begin(), weights.end(), 0.0);
-    std::vector<int> counts(bearers.size(), 0);
-    int target = options.leafCount ? *options.leafCount : int(std::lround(weightSum));
-    if (bearers.empty() || weightSum <= 0.0) {
-        target = 0;
-    }
-    if (target > 0) {
-        std::vector<std::pair<double, std::size_t>> remainders;
-        int assigned = 0;
-        for (std::size_t i = 0; i < bearers.size(); ++i) {
-            const double exact = weights[i] / weightSum * double(target);
-            counts[i] = int(std::floor(exact));
-            assigned += counts[i];
-            remainders.emplace_back(exact - std::floor(exact), i);
-        }
-        std::stable_sort(remainders.begin(), remainders.end(),
-                         [](const auto& a, const auto& b) { return a.first > b.first; });
-        for (std::size_t k = 0; assigned < target; ++k, ++assigned) {
-            counts[remainders[k % remainders.size()].second] += 1;
-        }
-    }
-    const float quality = target > 0 && weightSum > 0.0 ? float(weightSum / double(target)) : 1.0f;
-    const float leafLength = parameters.leafScale * std::sqrt(quality);
-    const float leafWidth = leafLength * parameters.leafScaleX;
-
-    PlantMesh leaves;
-    leaves.part = PlantPart::Leaf;
-    leaves.material = 1;
-    leaves.name = "leaves";
-    for (std::size_t b = 0; b < bearers.size(); ++b) {
-        const Stem& stem = builder.stems[bearers[b]];
-        Random random(options.seed * 0x2545F4914F6CDD1Dull + bearers[b] * 0x9E3779B97F4A7C15ull +
-                      0x1EAF);
-        float rotation = 2.0f * kPi * random.uniform();
-        const int count = counts[b];
-        for (int i = 0; i < count; ++i) {
-            const float local = float(stem.points.size() - 1) *
-                                (float(i) + 0.5f + 0.4f * random.symmetric()) / float(count);
-            const std::size_t segment =
-                std::min(stem.points.size() - 2, std::size_t(std::max(0.0f, local)));
-            const float t = std::clamp(local - float(segment), 0.0f, 1.0f);
-            const glm::vec3 position = glm::mix(stem.points[segment], stem.points[segment + 1], t);
-            Frame frame = stem.frames[segment + 1];
-            rotation += parameters.leafRotate >= 0.0f
-                            ? parameters.leafRotate + 0.3f * random.symmetric()
-                            : kPi + 0.3f * random.symmetric();
-            const glm::vec3 tilt =
-                glm::normalize(rotateAbout(frame.side, frame.direction, rotation));
-            frame.rotate(tilt, parameters.leafDownAngle + 0.2f * random.symmetric());
-            // Leaves turn their face towards the sky (the paper's leaf bend): the blade's
-            // width axis is horizontal, perpendicular to the leaf direction.
-            glm::vec3 along = frame.direction;
-            glm::vec3 across = glm::cross(glm::vec3(0.0f, 0.0f, 1.0f), along);
-            if (glm::length(across) < 1e-3f) {
-                across = frame.side;
-            }
-            across = glm::normalize(
-                rotateAbout(glm::normalize(across), along, 0.4f * random.symmetric()));
-            glm::vec3 normal = glm::normalize(glm::cross(along, across));
-            if (normal.z < 0.0f) {
-                normal = -normal;
-            }
-            const glm::vec3 base = position;
-            const glm::vec3 tip = position + along * leafLength;
-            const glm::vec3 halfWidth = across * (0.5f * leafWidth);
-            const std::uint32_t first = std::uint32_t(leaves.positions.size());
-            // Texture: v = 1 at the stalk (bottom row), v = 0 at the tip.
-            leaves.positions.insert(leaves.positions.end(), {base - halfWidth, base + halfWidth,
-                                                             tip + halfWidth, tip - halfWidth});
-            leaves.uvs.insert(leaves.uvs.end(),
-                              {{0.0f, 1.0f}, {1.0f, 1.0f}, {1.0f, 0.0f}, {0.0f, 0.0f}});
-            leaves.normals.insert(leaves.normals.end(), 4, normal);
-            leaves.indices.insert(leaves.indices.end(),
-                                  {first, first + 1, first + 2, first, first + 2, first + 3});
-        }
-    }
+    PlantMesh leaves =
+        makeLeaves(parameters, builder.stems,
+                   distributeLeaves(parameters, builder.stems, options.leafCount), options.seed);
     model.meshes.push_back(std::move(branches));
     if (!leaves.indices.empty()) {
         model.meshes.push_back(std::move(leaves));

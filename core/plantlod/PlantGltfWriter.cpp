@@ -90,9 +90,7 @@ Json vectorJson(const glm::vec3& v) {
     return Json::array({v.x, v.y, v.z});
 }
 
-}  // namespace
-
-Result<std::string> PlantGltfWriter::encode(const PlantModel& model, bool binary) {
+Status checkMeshes(const PlantModel& model) {
     for (const PlantMesh& mesh : model.meshes) {
         const bool consistent = mesh.normals.size() == mesh.positions.size() &&
                                 (mesh.uvs.empty() || mesh.uvs.size() == mesh.positions.size()) &&
@@ -109,24 +107,29 @@ Result<std::string> PlantGltfWriter::encode(const PlantModel& model, bool binary
             }
         }
     }
-    BufferBuilder buffer;
-    Json gltf;
-    gltf["asset"] = {{"version", "2.0"}, {"generator", "Sylva"}};
+    return Status::success();
+}
+
+// asset.extras.sylva_skeleton (read back by the importer's GltfSkeleton).
+Json skeletonJson(const std::vector<SkeletonSegment>& segments) {
     Json skeleton = Json::array();
-    for (const SkeletonSegment& segment : model.skeleton) {
+    for (const SkeletonSegment& segment : segments) {
         skeleton.push_back({{"start", vectorJson(toGltf(segment.start))},
                             {"end", vectorJson(toGltf(segment.end))},
                             {"startRadius", segment.startRadius},
                             {"endRadius", segment.endRadius},
                             {"parent", segment.parent}});
     }
-    gltf["asset"]["extras"] = {{"sylva_skeleton", skeleton}};
-    gltf["scene"] = 0;
+    return skeleton;
+}
 
-    Json images = Json::array();
-    Json textures = Json::array();
-    Json materials = Json::array();
-    for (const PlantMaterial& material : model.materials) {
+// The glTF arrays under construction; materials first (their PNGs come first in the
+// binary buffer), then one node with one primitive per mesh.
+class GltfDocument {
+public:
+    explicit GltfDocument(bool binary) : binary_(binary) {}
+
+    void addMaterial(const PlantMaterial& material) {
         Json pbr = {{"baseColorFactor", Json::array({material.baseColor.r, material.baseColor.g,
                                                      material.baseColor.b, material.baseColor.a})},
                     {"metallicFactor", 0.0},
@@ -134,15 +137,15 @@ Result<std::string> PlantGltfWriter::encode(const PlantModel& model, bool binary
         if (material.baseColorTexture.width > 0) {
             const std::string png = encodePng(material.baseColorTexture);
             Json image = {{"name", material.name}};
-            if (binary) {
-                image["bufferView"] = buffer.addView(png.data(), png.size(), 0);
+            if (binary_) {
+                image["bufferView"] = buffer_.addView(png.data(), png.size(), 0);
                 image["mimeType"] = "image/png";
             } else {
                 image["uri"] = "data:image/png;base64," + base64(png);
             }
-            images.push_back(image);
-            textures.push_back({{"source", int(images.size()) - 1}});
-            pbr["baseColorTexture"] = {{"index", int(textures.size()) - 1}};
+            images_.push_back(image);
+            textures_.push_back({{"source", int(images_.size()) - 1}});
+            pbr["baseColorTexture"] = {{"index", int(textures_.size()) - 1}};
         }
         Json entry = {
             {"name", material.name}, {"pbrMetallicRoughness", pbr}, {"doubleSided", true}};
@@ -150,21 +153,10 @@ Result<std::string> PlantGltfWriter::encode(const PlantModel& model, bool binary
             entry["alphaMode"] = "MASK";
             entry["alphaCutoff"] = material.alphaCutoff;
         }
-        materials.push_back(entry);
+        materials_.push_back(entry);
     }
 
-    Json accessors = Json::array();
-    Json meshes = Json::array();
-    Json nodes = Json::array();
-    Json sceneNodes = Json::array();
-    auto addAccessor = [&](int view, std::size_t count, int componentType, const char* type) {
-        accessors.push_back({{"bufferView", view},
-                             {"componentType", componentType},
-                             {"count", count},
-                             {"type", type}});
-        return int(accessors.size()) - 1;
-    };
-    for (const PlantMesh& mesh : model.meshes) {
+    void addMesh(const PlantMesh& mesh) {
         std::vector<glm::vec3> positions(mesh.positions.size());
         std::vector<glm::vec3> normals(mesh.normals.size());
         glm::vec3 minimum(std::numeric_limits<float>::max());
@@ -176,56 +168,78 @@ Result<std::string> PlantGltfWriter::encode(const PlantModel& model, bool binary
             normals[i] = toGltf(mesh.normals[i]);
         }
         Json attributes;
-        const int position = addAccessor(
-            buffer.addView(positions.data(), positions.size() * sizeof(glm::vec3), kArrayBuffer),
-            positions.size(), kFloat, "VEC3");
-        accessors[std::size_t(position)]["min"] = vectorJson(minimum);
-        accessors[std::size_t(position)]["max"] = vectorJson(maximum);
+        const int position = addAccessor(positions.data(), positions.size(), sizeof(glm::vec3),
+                                         kArrayBuffer, kFloat, "VEC3");
+        accessors_[std::size_t(position)]["min"] = vectorJson(minimum);
+        accessors_[std::size_t(position)]["max"] = vectorJson(maximum);
         attributes["POSITION"] = position;
-        attributes["NORMAL"] = addAccessor(
-            buffer.addView(normals.data(), normals.size() * sizeof(glm::vec3), kArrayBuffer),
-            normals.size(), kFloat, "VEC3");
+        attributes["NORMAL"] = addAccessor(normals.data(), normals.size(), sizeof(glm::vec3),
+                                           kArrayBuffer, kFloat, "VEC3");
         if (!mesh.uvs.empty()) {
-            attributes["TEXCOORD_0"] = addAccessor(
-                buffer.addView(mesh.uvs.data(), mesh.uvs.size() * sizeof(glm::vec2), kArrayBuffer),
-                mesh.uvs.size(), kFloat, "VEC2");
+            attributes["TEXCOORD_0"] = addAccessor(mesh.uvs.data(), mesh.uvs.size(),
+                                                   sizeof(glm::vec2), kArrayBuffer, kFloat, "VEC2");
         }
-        const int indices = addAccessor(
-            buffer.addView(mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t),
-                           kElementArrayBuffer),
-            mesh.indices.size(), kUnsignedInt, "SCALAR");
+        const int indices =
+            addAccessor(mesh.indices.data(), mesh.indices.size(), sizeof(std::uint32_t),
+                        kElementArrayBuffer, kUnsignedInt, "SCALAR");
         Json primitive = {{"attributes", attributes}, {"indices", indices}, {"mode", 4}};
         if (mesh.material >= 0) {
             primitive["material"] = mesh.material;
         }
-        meshes.push_back({{"name", mesh.name}, {"primitives", Json::array({primitive})}});
-        nodes.push_back({{"name", mesh.name}, {"mesh", int(meshes.size()) - 1}});
-        sceneNodes.push_back(int(nodes.size()) - 1);
+        meshes_.push_back({{"name", mesh.name}, {"primitives", Json::array({primitive})}});
+        nodes_.push_back({{"name", mesh.name}, {"mesh", int(meshes_.size()) - 1}});
+        sceneNodes_.push_back(int(nodes_.size()) - 1);
     }
-    gltf["scenes"] = Json::array({{{"name", model.name}, {"nodes", sceneNodes}}});
-    gltf["nodes"] = nodes;
-    gltf["meshes"] = meshes;
-    gltf["materials"] = materials;
-    if (!textures.empty()) {
-        gltf["textures"] = textures;
-        gltf["images"] = images;
-    }
-    gltf["accessors"] = accessors;
-    gltf["bufferViews"] = buffer.views;
-    while (buffer.bytes.size() % 4 != 0) {
-        buffer.bytes.push_back('\0');
-    }
-    Json bufferEntry = {{"byteLength", buffer.bytes.size()}};
-    if (!binary) {
-        bufferEntry["uri"] = "data:application/octet-stream;base64," + base64(buffer.bytes);
-    }
-    gltf["buffers"] = Json::array({bufferEntry});
 
-    std::string json = gltf.dump(binary ? -1 : 1);
-    if (!binary) {
-        return json + "\n";
+    // Stores the arrays into `gltf` in the order of the format's examples; the buffer
+    // is embedded as base64 unless binary (then it is the GLB's BIN chunk).
+    void finish(const std::string& sceneName, Json& gltf) {
+        gltf["scenes"] = Json::array({{{"name", sceneName}, {"nodes", sceneNodes_}}});
+        gltf["nodes"] = nodes_;
+        gltf["meshes"] = meshes_;
+        gltf["materials"] = materials_;
+        if (!textures_.empty()) {
+            gltf["textures"] = textures_;
+            gltf["images"] = images_;
+        }
+        gltf["accessors"] = accessors_;
+        gltf["bufferViews"] = buffer_.views;
+        while (buffer_.bytes.size() % 4 != 0) {
+            buffer_.bytes.push_back('\0');
+        }
+        Json bufferEntry = {{"byteLength", buffer_.bytes.size()}};
+        if (!binary_) {
+            bufferEntry["uri"] = "data:application/octet-stream;base64," + base64(buffer_.bytes);
+        }
+        gltf["buffers"] = Json::array({bufferEntry});
     }
-    // GLB: 12-byte header, JSON chunk padded with spaces, BIN chunk padded with zeros.
+
+    const std::string& bufferBytes() const { return buffer_.bytes; }
+
+private:
+    int addAccessor(const void* data, std::size_t count, std::size_t elementSize, int target,
+                    int componentType, const char* type) {
+        const int view = buffer_.addView(data, count * elementSize, target);
+        accessors_.push_back({{"bufferView", view},
+                              {"componentType", componentType},
+                              {"count", count},
+                              {"type", type}});
+        return int(accessors_.size()) - 1;
+    }
+
+    bool binary_;
+    BufferBuilder buffer_;
+    Json images_ = Json::array();
+    Json textures_ = Json::array();
+    Json materials_ = Json::array();
+    Json accessors_ = Json::array();
+    Json meshes_ = Json::array();
+    Json nodes_ = Json::array();
+    Json sceneNodes_ = Json::array();
+};
+
+// GLB: 12-byte header, JSON chunk padded with spaces, BIN chunk padded with zeros.
+std::string glbContainer(std::string json, const std::string& binary) {
     while (json.size() % 4 != 0) {
         json.push_back(' ');
     }
@@ -235,17 +249,42 @@ Result<std::string> PlantGltfWriter::encode(const PlantModel& model, bool binary
         }
     };
     std::string glb;
-    const std::uint32_t total = std::uint32_t(12 + 8 + json.size() + 8 + buffer.bytes.size());
+    const std::uint32_t total = std::uint32_t(12 + 8 + json.size() + 8 + binary.size());
     put32(glb, 0x46546C67u);  // "glTF"
     put32(glb, 2);
     put32(glb, total);
     put32(glb, std::uint32_t(json.size()));
     put32(glb, 0x4E4F534Au);  // "JSON"
     glb += json;
-    put32(glb, std::uint32_t(buffer.bytes.size()));
+    put32(glb, std::uint32_t(binary.size()));
     put32(glb, 0x004E4942u);  // "BIN\0"
-    glb += buffer.bytes;
+    glb += binary;
     return glb;
+}
+
+}  // namespace
+
+Result<std::string> PlantGltfWriter::encode(const PlantModel& model, bool binary) {
+    if (Status valid = checkMeshes(model); !valid) {
+        return valid.error();
+    }
+    Json gltf;
+    gltf["asset"] = {{"version", "2.0"}, {"generator", "Sylva"}};
+    gltf["asset"]["extras"] = {{"sylva_skeleton", skeletonJson(model.skeleton)}};
+    gltf["scene"] = 0;
+    GltfDocument document(binary);
+    for (const PlantMaterial& material : model.materials) {
+        document.addMaterial(material);
+    }
+    for (const PlantMesh& mesh : model.meshes) {
+        document.addMesh(mesh);
+    }
+    document.finish(model.name, gltf);
+    std::string json = gltf.dump(binary ? -1 : 1);
+    if (!binary) {
+        return json + "\n";
+    }
+    return glbContainer(std::move(json), document.bufferBytes());
 }
 
 Status PlantGltfWriter::write(const PlantModel& model, const std::filesystem::path& path) {

@@ -56,13 +56,7 @@ double imageError(const PrimitiveRasterizer& rasterizer, std::span<const LodElli
         perView[view] = multiScaleSquaredErrors(rasterizer.resolve(frame), reference[view],
                                                 rasterizer.resolution());
     });
-    std::vector<double> mean(perView[0].size(), 0.0);
-    for (const auto& levels : perView) {
-        for (std::size_t k = 0; k < levels.size(); ++k) {
-            mean[k] += levels[k] / views;
-        }
-    }
-    return multiScaleRmse(mean);
+    return multiScaleRmse(meanOverViews(perView));
 }
 
 glm::vec3 branchColor(const PlantModel& model) {
@@ -109,11 +103,9 @@ Bounds modelBounds(const PlantModel& model) {
     return bounds;
 }
 
-}  // namespace
-
-Result<PlantLod> buildPlantLod(const PlantModel& model, const PlantLodOptions& options,
-                               const PlantLodProgressCallback& progress) {
-    const std::string label = "plant '" + model.name + "'";
+// Finite geometry, something to build from, a power-of-two error image.
+Status checkInput(const PlantModel& model, const PlantLodOptions& options,
+                  const std::string& label) {
     for (const PlantMesh& mesh : model.meshes) {
         for (const glm::vec3& p : mesh.positions) {
             if (!finite(p)) {
@@ -136,6 +128,115 @@ Result<PlantLod> buildPlantLod(const PlantModel& model, const PlantLodOptions& o
     if (options.resolution <= 0 || (options.resolution & (options.resolution - 1)) != 0) {
         return Error{label + ": the error image resolution " + std::to_string(options.resolution) +
                      " is not a power of two"};
+    }
+    return Status::success();
+}
+
+// §3.3.3: the line width scale that best matches the branch mesh, by ternary search on
+// log(scale) in [0.5, 2.5].
+float calibrateLineWidth(const PlantModel& model, const glm::vec3& barkColor,
+                         const PrimitiveRasterizer& rasterizer,
+                         const std::vector<std::vector<float>>& branchReference, int threads) {
+    const LineSkeleton original(model.skeleton, barkColor);
+    std::vector<LodLine> lines;
+    for (const LineNode& node : original.nodes()) {
+        lines.push_back(node.line);
+    }
+    float lo = std::log(0.5f), hi = std::log(2.5f);
+    for (int i = 0; i < 10; ++i) {
+        const float a = lo + (hi - lo) / 3.0f, b = hi - (hi - lo) / 3.0f;
+        const double ea = imageError(rasterizer, {}, lines, std::exp(a), branchReference, threads);
+        const double eb = imageError(rasterizer, {}, lines, std::exp(b), branchReference, threads);
+        (ea <= eb ? hi : lo) = ea <= eb ? b : a;
+    }
+    return std::exp(0.5f * (lo + hi));
+}
+
+// Ellipsoid level switches: the mean diameter (weighted by area) of a level over
+// ellipsoidPixels, strictly increasing; level 0 starts at 0.
+std::vector<float> ellipsoidLevelErrors(const std::vector<EllipsoidLevel>& levels,
+                                        const PlantLodOptions& options) {
+    std::vector<float> levelError(levels.size(), 0.0f);
+    for (std::size_t k = 1; k < levels.size(); ++k) {
+        double weighted = 0.0, weight = 0.0;
+        for (const LodEllipsoid& e : levels[k].ellipsoids) {
+            weighted += static_cast<double>(e.weight) * (e.radii.x + e.radii.y);
+            weight += e.weight;
+        }
+        const float size =
+            weight > 0.0 ? static_cast<float>(weighted / weight) / options.ellipsoidPixels : 0.0f;
+        levelError[k] = std::max(size, std::nextafter(levelError[k - 1], kInfinity));
+    }
+    return levelError;
+}
+
+// Line intervals as a sequential point tree: a node's error is the largest width in its
+// merge subtree divided by linePixels; original lines start at 0.
+void addLines(const LineHierarchyResult& lineHierarchy, const PlantLodOptions& options,
+              PlantLod& lod) {
+    const std::vector<LineNode>& nodes = lineHierarchy.nodes;
+    std::vector<float> nodeError(nodes.size(), 0.0f);
+    std::vector<int> mergedInto(nodes.size(), -1);
+    for (const LineMergeRecord& merge : lineHierarchy.merges) {
+        mergedInto[merge.first] = merge.result;
+        mergedInto[merge.second] = merge.result;
+    }
+    const float widthScale = lineHierarchy.widthScale;
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+        const LodLine& l = nodes[i].line;
+        nodeError[i] =
+            2.0f * std::max(l.startRadius, l.endRadius) * widthScale / options.linePixels;
+    }
+    for (const LineMergeRecord& merge : lineHierarchy.merges) {  // in creation order
+        nodeError[merge.result] =
+            std::max({nodeError[merge.result], nodeError[merge.first], nodeError[merge.second]});
+    }
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+        LodLine l = nodes[i].line;
+        l.startRadius *= widthScale;
+        l.endRadius *= widthScale;
+        l.errorMinimum = nodes[i].birthStep == 0 ? 0.0f : nodeError[i];
+        l.errorMaximum = mergedInto[i] >= 0 ? nodeError[mergedInto[i]] : kInfinity;
+        if (l.errorMinimum < l.errorMaximum) {
+            lod.lines.push_back(l);
+        }
+    }
+}
+
+// The discrete levels with the lines drawn at their error and their measured image
+// error against the full mesh; a plant of branches only gets one level.
+void addLevels(const std::vector<EllipsoidLevel>& levels, const std::vector<float>& levelError,
+               const PrimitiveRasterizer& rasterizer,
+               const std::vector<std::vector<float>>& fullReference, int threads, PlantLod& lod) {
+    for (std::size_t k = 0; k < levels.size(); ++k) {
+        PlantLodLevel level;
+        level.errorMinimum = levelError[k];
+        level.errorMaximum = k + 1 < levels.size() ? levelError[k + 1] : kInfinity;
+        level.ellipsoidCount = static_cast<std::uint32_t>(levels[k].ellipsoids.size());
+        level.alphaThreshold = levels[k].alphaThreshold;
+        level.primitiveScale = levels[k].primitiveScale;
+        const std::vector<LodLine> lines = linesAt(lod, level.errorMinimum);
+        level.lineCount = static_cast<std::uint32_t>(lines.size());
+        level.imageError = static_cast<float>(
+            imageError(rasterizer, levels[k].ellipsoids, lines, 1.0f, fullReference, threads));
+        lod.levels.push_back(level);
+    }
+    if (levels.empty()) {  // branches only: one level per distinct line error would do; keep one
+        PlantLodLevel level;
+        const std::vector<LodLine> lines = linesAt(lod, 0.0f);
+        level.lineCount = static_cast<std::uint32_t>(lines.size());
+        level.imageError =
+            static_cast<float>(imageError(rasterizer, {}, lines, 1.0f, fullReference, threads));
+        lod.levels.push_back(level);
+    }
+}
+
+}  // namespace
+
+Result<PlantLod> buildPlantLod(const PlantModel& model, const PlantLodOptions& options,
+                               const PlantLodProgressCallback& progress) {
+    if (Status valid = checkInput(model, options, "plant '" + model.name + "'"); !valid) {
+        return valid.error();
     }
     const Bounds bounds = modelBounds(model);
     const int threads = resolveThreadCount(options.threads);
@@ -177,21 +278,8 @@ Result<PlantLod> buildPlantLod(const PlantModel& model, const PlantLodOptions& o
     lineOptions.threads = threads;
     if (!model.skeleton.empty() && model.triangleCount(PlantPart::Branch) > 0) {
         stage("line calibration", 0.7);
-        const LineSkeleton original(model.skeleton, barkColor);
-        std::vector<LodLine> lines;
-        for (const LineNode& node : original.nodes()) {
-            lines.push_back(node.line);
-        }
-        float lo = std::log(0.5f), hi = std::log(2.5f);
-        for (int i = 0; i < 10; ++i) {  // ternary search on log(scale)
-            const float a = lo + (hi - lo) / 3.0f, b = hi - (hi - lo) / 3.0f;
-            const double ea =
-                imageError(rasterizer, {}, lines, std::exp(a), branchReference, threads);
-            const double eb =
-                imageError(rasterizer, {}, lines, std::exp(b), branchReference, threads);
-            (ea <= eb ? hi : lo) = ea <= eb ? b : a;
-        }
-        lineOptions.widthScale = std::exp(0.5f * (lo + hi));
+        lineOptions.widthScale =
+            calibrateLineWidth(model, barkColor, rasterizer, branchReference, threads);
     }
     LineHierarchyResult lineHierarchy;
     if (!model.skeleton.empty()) {
@@ -209,19 +297,7 @@ Result<PlantLod> buildPlantLod(const PlantModel& model, const PlantLodOptions& o
     lod.name = model.name;
     lod.boundsMinimum = bounds.minimum;
     lod.boundsMaximum = bounds.maximum;
-
-    // Ellipsoid level switches: mean diameter (weighted by area) over ellipsoidPixels.
-    std::vector<float> levelError(levels.size(), 0.0f);
-    for (std::size_t k = 1; k < levels.size(); ++k) {
-        double weighted = 0.0, weight = 0.0;
-        for (const LodEllipsoid& e : levels[k].ellipsoids) {
-            weighted += static_cast<double>(e.weight) * (e.radii.x + e.radii.y);
-            weight += e.weight;
-        }
-        const float size =
-            weight > 0.0 ? static_cast<float>(weighted / weight) / options.ellipsoidPixels : 0.0f;
-        levelError[k] = std::max(size, std::nextafter(levelError[k - 1], kInfinity));
-    }
+    const std::vector<float> levelError = ellipsoidLevelErrors(levels, options);
     for (std::size_t k = 0; k < levels.size(); ++k) {
         const float high = k + 1 < levels.size() ? levelError[k + 1] : kInfinity;
         for (LodEllipsoid e : levels[k].ellipsoids) {
@@ -230,37 +306,7 @@ Result<PlantLod> buildPlantLod(const PlantModel& model, const PlantLodOptions& o
             lod.ellipsoids.push_back(e);
         }
     }
-
-    // Line intervals as a sequential point tree: a node's error is the largest width in
-    // its merge subtree divided by linePixels; original lines start at 0.
-    const std::vector<LineNode>& nodes = lineHierarchy.nodes;
-    std::vector<float> nodeError(nodes.size(), 0.0f);
-    std::vector<int> mergedInto(nodes.size(), -1);
-    for (const LineMergeRecord& merge : lineHierarchy.merges) {
-        mergedInto[merge.first] = merge.result;
-        mergedInto[merge.second] = merge.result;
-    }
-    const float widthScale = lineHierarchy.widthScale;
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-        const LodLine& l = nodes[i].line;
-        nodeError[i] =
-            2.0f * std::max(l.startRadius, l.endRadius) * widthScale / options.linePixels;
-    }
-    for (const LineMergeRecord& merge : lineHierarchy.merges) {  // in creation order
-        nodeError[merge.result] =
-            std::max({nodeError[merge.result], nodeError[merge.first], nodeError[merge.second]});
-    }
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-        LodLine l = nodes[i].line;
-        l.startRadius *= widthScale;
-        l.endRadius *= widthScale;
-        l.errorMinimum = nodes[i].birthStep == 0 ? 0.0f : nodeError[i];
-        l.errorMaximum = mergedInto[i] >= 0 ? nodeError[mergedInto[i]] : kInfinity;
-        if (l.errorMinimum < l.errorMaximum) {
-            lod.lines.push_back(l);
-        }
-    }
-
+    addLines(lineHierarchy, options, lod);
     // Coarse → fine: errorMaximum descending (stable keeps level/creation order).
     std::stable_sort(lod.ellipsoids.begin(), lod.ellipsoids.end(),
                      [](const LodEllipsoid& a, const LodEllipsoid& b) {
@@ -271,27 +317,7 @@ Result<PlantLod> buildPlantLod(const PlantModel& model, const PlantLodOptions& o
     });
 
     stage("level errors", 0.86);
-    for (std::size_t k = 0; k < levels.size(); ++k) {
-        PlantLodLevel level;
-        level.errorMinimum = levelError[k];
-        level.errorMaximum = k + 1 < levels.size() ? levelError[k + 1] : kInfinity;
-        level.ellipsoidCount = static_cast<std::uint32_t>(levels[k].ellipsoids.size());
-        level.alphaThreshold = levels[k].alphaThreshold;
-        level.primitiveScale = levels[k].primitiveScale;
-        const std::vector<LodLine> lines = linesAt(lod, level.errorMinimum);
-        level.lineCount = static_cast<std::uint32_t>(lines.size());
-        level.imageError = static_cast<float>(
-            imageError(rasterizer, levels[k].ellipsoids, lines, 1.0f, fullReference, threads));
-        lod.levels.push_back(level);
-    }
-    if (levels.empty()) {  // branches only: one level per distinct line error would do; keep one
-        PlantLodLevel level;
-        const std::vector<LodLine> lines = linesAt(lod, 0.0f);
-        level.lineCount = static_cast<std::uint32_t>(lines.size());
-        level.imageError =
-            static_cast<float>(imageError(rasterizer, {}, lines, 1.0f, fullReference, threads));
-        lod.levels.push_back(level);
-    }
+    addLevels(levels, levelError, rasterizer, fullReference, threads, lod);
     if (options.ambientOcclusionSamples > 0) {
         stage("ambient occlusion", 0.9);
         AmbientOcclusionOptions ao;
@@ -324,16 +350,12 @@ double plantMeshImageError(const PlantModel& source, const PlantModel& candidate
     const int threads = resolveThreadCount(options.threads);
     const auto reference = renderReference(rasterizer, source, PlantPart::Leaf, true, threads);
     const auto drawn = renderReference(rasterizer, candidate, PlantPart::Leaf, true, threads);
-    std::vector<double> mean;
+    std::vector<std::vector<double>> perView;
     for (int view = 0; view < rasterizer.viewCount(); ++view) {
-        const std::vector<double> levels =
-            multiScaleSquaredErrors(drawn[view], reference[view], rasterizer.resolution());
-        mean.resize(levels.size(), 0.0);
-        for (std::size_t k = 0; k < levels.size(); ++k) {
-            mean[k] += levels[k] / rasterizer.viewCount();
-        }
+        perView.push_back(
+            multiScaleSquaredErrors(drawn[view], reference[view], rasterizer.resolution()));
     }
-    return multiScaleRmse(mean);
+    return multiScaleRmse(meanOverViews(perView));
 }
 
 Status addBillboardClouds(const PlantModel& model, PlantLod& lod, const PlantLodOptions& options,

@@ -1,100 +1,28 @@
+// The `.plod` codec: sections assembled from the record field lists of PlodRecords.h
+// (one list per record, run by the writer and the reader alike) and the checks of
+// docs/formats.md ("Validation"), first failure reported.
 #include "sylva/core/plantlod/PlodFile.h"
 
-#include "sylva/core/base/AtomicFile.h"
-
-#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <system_error>
 
-#include <unistd.h>
+#include "PlodRecords.h"
+#include "sylva/core/base/AtomicFile.h"
 
 namespace sylva {
 
 namespace {
 
+using plod::strideOf;
+
 constexpr char kMagic[8] = {'S', 'Y', 'L', 'V', 'P', 'L', 'O', 'D'};
-constexpr std::size_t kHeaderSize = 64;
-constexpr std::size_t kEntrySize = 32;
+constexpr std::size_t kHeaderSize = strideOf<plod::Header>();
+constexpr std::size_t kEntrySize = strideOf<plod::SectionEntry>();
 constexpr std::size_t kAlignment = 64;
-constexpr std::uint32_t kLevelStride = 32;
-constexpr std::uint32_t kEllipsoidStride = 112;
-constexpr std::uint32_t kLineStride = 64;
-constexpr std::uint32_t kBillboardLevelStride = 32;
-constexpr std::uint32_t kBillboardQuadStride = 96;
-
-class Writer {
-public:
-    void u32(std::uint32_t v) {
-        for (int i = 0; i < 4; ++i) {
-            bytes.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-        }
-    }
-    void u64(std::uint64_t v) {
-        for (int i = 0; i < 8; ++i) {
-            bytes.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-        }
-    }
-    void f32(float v) { u32(std::bit_cast<std::uint32_t>(v)); }
-    void vec3(const glm::vec3& v) {
-        f32(v.x);
-        f32(v.y);
-        f32(v.z);
-    }
-    void vec2(const glm::vec2& v) {
-        f32(v.x);
-        f32(v.y);
-    }
-    void pad(std::size_t alignment) {
-        while (bytes.size() % alignment != 0) {
-            bytes.push_back(0);
-        }
-    }
-    void putU64At(std::size_t at, std::uint64_t v) {
-        for (int i = 0; i < 8; ++i) {
-            bytes[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
-        }
-    }
-    std::vector<std::uint8_t> bytes;
-};
-
-class Reader {
-public:
-    Reader(std::span<const std::uint8_t> bytes, std::size_t at) : bytes_(bytes), at_(at) {}
-    std::uint32_t u32() {
-        std::uint32_t v = 0;
-        for (int i = 0; i < 4; ++i) {
-            v |= static_cast<std::uint32_t>(bytes_[at_ + i]) << (8 * i);
-        }
-        at_ += 4;
-        return v;
-    }
-    std::uint64_t u64() {
-        std::uint64_t v = 0;
-        for (int i = 0; i < 8; ++i) {
-            v |= static_cast<std::uint64_t>(bytes_[at_ + i]) << (8 * i);
-        }
-        at_ += 8;
-        return v;
-    }
-    float f32() { return std::bit_cast<float>(u32()); }
-    glm::vec3 vec3() {
-        const float x = f32(), y = f32();
-        return {x, y, f32()};
-    }
-    glm::vec2 vec2() {
-        const float x = f32();
-        return {x, f32()};
-    }
-
-private:
-    std::span<const std::uint8_t> bytes_;
-    std::size_t at_;
-};
+constexpr std::uint32_t kSectionVersion = 1;
 
 std::uint64_t fnv1a(std::span<const std::uint8_t> bytes) {
     std::uint64_t hash = 0xcbf29ce484222325ull;
@@ -114,212 +42,177 @@ std::string hex(std::uint64_t v) {
     return text;
 }
 
+// ---------------------------------------------------------------------------- writing
+
+struct Section {
+    char tag[4] = {};
+    std::uint32_t count = 0;
+    std::uint32_t stride = 0;
+    plod::PlodWriter data;
+};
+
+Section emptySection(const char (&tag)[5], std::uint32_t stride) {
+    Section section;
+    std::memcpy(section.tag, tag, 4);
+    section.stride = stride;
+    return section;
+}
+
+template <typename Record>
+Section recordSection(const char (&tag)[5], const std::vector<Record>& records) {
+    Section section = emptySection(tag, strideOf<Record>());
+    section.count = static_cast<std::uint32_t>(records.size());
+    for (const Record& record : records) {
+        plod::write(section.data, record);
+    }
+    return section;
+}
+
+Section nameSection(const std::string& name) {
+    Section section = emptySection("NAME", 1);
+    section.count = static_cast<std::uint32_t>(name.size());
+    section.data.bytes.assign(name.begin(), name.end());
+    return section;
+}
+
+// `BBCL`, `BBCQ`, `BBCA`: the levels, all their quads, their atlases (each atlas 64-byte
+// aligned inside `BBCA`).
+void appendBillboardSections(const BillboardCloud& cloud, std::vector<Section>& sections) {
+    Section levels = emptySection("BBCL", strideOf<plod::BillboardLevelEntry>());
+    Section quads = emptySection("BBCQ", strideOf<BillboardQuad>());
+    Section atlases = emptySection("BBCA", 1);
+    std::uint32_t firstQuad = 0;
+    for (const BillboardLevel& level : cloud.levels) {
+        atlases.data.pad(kAlignment);
+        plod::BillboardLevelEntry entry;
+        entry.epsilon = level.epsilon;
+        entry.imageError = level.imageError;
+        entry.firstQuad = firstQuad;
+        entry.quadCount = static_cast<std::uint32_t>(level.quads.size());
+        entry.atlasWidth = static_cast<std::uint32_t>(level.atlas.width);
+        entry.atlasHeight = static_cast<std::uint32_t>(level.atlas.height);
+        entry.atlasOffset = atlases.data.bytes.size();
+        plod::write(levels.data, entry);
+        atlases.data.bytes.insert(atlases.data.bytes.end(), level.atlas.rgba.begin(),
+                                  level.atlas.rgba.end());
+        for (const BillboardQuad& quad : level.quads) {
+            plod::write(quads.data, quad);
+        }
+        firstQuad += entry.quadCount;
+    }
+    levels.count = static_cast<std::uint32_t>(cloud.levels.size());
+    quads.count = firstQuad;
+    atlases.count = static_cast<std::uint32_t>(atlases.data.bytes.size());
+    sections.push_back(std::move(levels));
+    sections.push_back(std::move(quads));
+    sections.push_back(std::move(atlases));
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> encodePlod(const PlantLod& lod) {
-    struct Section {
-        char tag[4];
-        std::uint32_t count;
-        std::uint32_t stride;
-        Writer data;
-    };
-    std::vector<Section> sections(4);
-    std::memcpy(sections[0].tag, "NAME", 4);
-    sections[0].count = static_cast<std::uint32_t>(lod.name.size());
-    sections[0].stride = 1;
-    sections[0].data.bytes.assign(lod.name.begin(), lod.name.end());
-
-    std::memcpy(sections[1].tag, "LEVL", 4);
-    sections[1].count = static_cast<std::uint32_t>(lod.levels.size());
-    sections[1].stride = kLevelStride;
-    for (const PlantLodLevel& level : lod.levels) {
-        Writer& w = sections[1].data;
-        w.f32(level.errorMinimum);
-        w.f32(level.errorMaximum);
-        w.u32(level.ellipsoidCount);
-        w.u32(level.lineCount);
-        w.f32(level.imageError);
-        w.f32(level.alphaThreshold);
-        w.f32(level.primitiveScale);
-        w.u32(0);
-    }
-
-    std::memcpy(sections[2].tag, "ELLI", 4);
-    sections[2].count = static_cast<std::uint32_t>(lod.ellipsoids.size());
-    sections[2].stride = kEllipsoidStride;
-    for (const LodEllipsoid& e : lod.ellipsoids) {
-        Writer& w = sections[2].data;
-        w.vec3(e.center);
-        w.f32(e.weight);
-        for (int i = 0; i < 3; ++i) {
-            w.vec3(e.axes[i]);
-            w.f32(e.radii[i]);
-        }
-        w.vec3(e.color);
-        w.f32(e.ambientOcclusion);
-        w.f32(e.noiseLevel);
-        w.f32(e.alphaThreshold);
-        w.f32(e.errorMinimum);
-        w.f32(e.errorMaximum);
-        w.u32(e.level);
-        w.u32(0);
-        w.u32(0);
-        w.u32(0);
-    }
-
-    std::memcpy(sections[3].tag, "LINE", 4);
-    sections[3].count = static_cast<std::uint32_t>(lod.lines.size());
-    sections[3].stride = kLineStride;
-    for (const LodLine& l : lod.lines) {
-        Writer& w = sections[3].data;
-        w.vec3(l.start);
-        w.f32(l.startRadius);
-        w.vec3(l.end);
-        w.f32(l.endRadius);
-        w.vec3(l.color);
-        w.f32(l.ambientOcclusion);
-        w.f32(l.weight);
-        w.f32(l.errorMinimum);
-        w.f32(l.errorMaximum);
-        w.u32(0);
-    }
-
-    // Billboard clouds (optional): levels, quads, atlases (each atlas 64-byte aligned
-    // inside BBCA).
+    std::vector<Section> sections;
+    sections.push_back(nameSection(lod.name));
+    sections.push_back(recordSection("LEVL", lod.levels));
+    sections.push_back(recordSection("ELLI", lod.ellipsoids));
+    sections.push_back(recordSection("LINE", lod.lines));
     if (!lod.billboards.levels.empty()) {
-        sections.resize(7);
-        Section& levels = sections[4];
-        Section& quads = sections[5];
-        Section& atlases = sections[6];
-        std::memcpy(levels.tag, "BBCL", 4);
-        std::memcpy(quads.tag, "BBCQ", 4);
-        std::memcpy(atlases.tag, "BBCA", 4);
-        levels.stride = kBillboardLevelStride;
-        quads.stride = kBillboardQuadStride;
-        atlases.stride = 1;
-        std::uint32_t firstQuad = 0;
-        for (const BillboardLevel& level : lod.billboards.levels) {
-            atlases.data.pad(kAlignment);
-            Writer& w = levels.data;
-            w.f32(level.epsilon);
-            w.f32(level.imageError);
-            w.u32(firstQuad);
-            w.u32(static_cast<std::uint32_t>(level.quads.size()));
-            w.u32(static_cast<std::uint32_t>(level.atlas.width));
-            w.u32(static_cast<std::uint32_t>(level.atlas.height));
-            w.u64(atlases.data.bytes.size());
-            atlases.data.bytes.insert(atlases.data.bytes.end(), level.atlas.rgba.begin(),
-                                      level.atlas.rgba.end());
-            for (const BillboardQuad& q : level.quads) {
-                Writer& qw = quads.data;
-                for (const glm::vec3& c : q.corners) {
-                    qw.vec3(c);
-                }
-                for (const glm::vec2& uv : q.atlasUvs) {
-                    qw.vec2(uv);
-                }
-                qw.vec3(q.normal);
-                qw.u32((q.part == PlantPart::Branch ? 1u : 0u) | (q.cardboard ? 2u : 0u));
-            }
-            firstQuad += static_cast<std::uint32_t>(level.quads.size());
-        }
-        levels.count = static_cast<std::uint32_t>(lod.billboards.levels.size());
-        quads.count = firstQuad;
-        atlases.count = static_cast<std::uint32_t>(atlases.data.bytes.size());
+        appendBillboardSections(lod.billboards, sections);
     }
-
-    Writer out;
-    out.bytes.insert(out.bytes.end(), kMagic, kMagic + 8);
-    out.u32(kPlodVersion);
-    out.u32(static_cast<std::uint32_t>(kHeaderSize));
-    out.u32(static_cast<std::uint32_t>(sections.size()));
-    out.u32(0);  // flags
-    out.u64(0);  // file size, patched below
-    out.vec3(lod.boundsMinimum);
-    out.vec3(lod.boundsMaximum);
-    out.u64(0);  // checksum, patched below
+    // Everything after the header: the table, then the sections at aligned offsets.
+    plod::PlodWriter body;
     std::uint64_t offset = kHeaderSize + kEntrySize * sections.size();
-    for (Section& s : sections) {
+    for (const Section& section : sections) {
         offset = (offset + kAlignment - 1) / kAlignment * kAlignment;
-        out.bytes.insert(out.bytes.end(), s.tag, s.tag + 4);
-        out.u32(1);  // section version
-        out.u64(offset);
-        out.u64(s.data.bytes.size());
-        out.u32(s.count);
-        out.u32(s.stride);
-        offset += s.data.bytes.size();
+        plod::SectionEntry entry;
+        std::memcpy(entry.tag, section.tag, 4);
+        entry.version = kSectionVersion;
+        entry.offset = offset;
+        entry.size = section.data.bytes.size();
+        entry.count = section.count;
+        entry.stride = section.stride;
+        plod::write(body, entry);
+        offset += entry.size;
     }
-    for (Section& s : sections) {
-        out.pad(kAlignment);
-        out.bytes.insert(out.bytes.end(), s.data.bytes.begin(), s.data.bytes.end());
+    for (const Section& section : sections) {
+        // Padding relative to the body is padding relative to the file: 64 | kHeaderSize.
+        body.pad(kAlignment);
+        body.bytes.insert(body.bytes.end(), section.data.bytes.begin(), section.data.bytes.end());
     }
-    out.putU64At(24, out.bytes.size());
-    out.putU64At(56, fnv1a(std::span(out.bytes).subspan(kHeaderSize)));
+    plod::Header header;
+    std::memcpy(header.magic, kMagic, sizeof kMagic);
+    header.version = kPlodVersion;
+    header.headerSize = static_cast<std::uint32_t>(kHeaderSize);
+    header.sectionCount = static_cast<std::uint32_t>(sections.size());
+    header.fileSize = kHeaderSize + body.bytes.size();
+    header.boundsMinimum = lod.boundsMinimum;
+    header.boundsMaximum = lod.boundsMaximum;
+    header.checksum = fnv1a(body.bytes);
+    plod::PlodWriter out;
+    plod::write(out, header);
+    out.bytes.insert(out.bytes.end(), body.bytes.begin(), body.bytes.end());
     return std::move(out.bytes);
 }
 
-Result<PlantLod> decodePlod(std::span<const std::uint8_t> bytes, const std::string& name,
-                            PlodFileInfo* info) {
-    const auto fail = [&](const std::string& message) { return Error{name + ": " + message}; };
+namespace {
+
+// ---------------------------------------------------------------------------- reading
+
+static_assert(kHeaderSize % kAlignment == 0);
+
+// Messages that start with the file name.
+struct Failure {
+    const std::string& name;
+    Error operator()(const std::string& message) const { return Error{name + ": " + message}; }
+};
+
+// Magic, version, sizes, the table's extent and the checksum.
+Result<plod::Header> readHeader(std::span<const std::uint8_t> bytes, const Failure& fail) {
     if (bytes.size() < kHeaderSize) {
         return fail("truncated header (" + std::to_string(bytes.size()) +
                     " bytes, a .plod header has 64)");
     }
-    if (std::memcmp(bytes.data(), kMagic, 8) != 0) {
+    const plod::Header header = plod::read<plod::Header>(bytes, 0);
+    if (std::memcmp(header.magic, kMagic, sizeof kMagic) != 0) {
         return fail("not a .plod file (bad magic; expected \"SYLVPLOD\")");
     }
-    Reader header(bytes, 8);
-    const std::uint32_t version = header.u32();
-    if (version != kPlodVersion) {
-        return fail("unsupported .plod version " + std::to_string(version) +
+    if (header.version != kPlodVersion) {
+        return fail("unsupported .plod version " + std::to_string(header.version) +
                     " (this build reads version " + std::to_string(kPlodVersion) + ")");
     }
-    const std::uint32_t headerSize = header.u32();
-    if (headerSize != kHeaderSize) {
-        return fail("header size " + std::to_string(headerSize) + " is not 64");
+    if (header.headerSize != kHeaderSize) {
+        return fail("header size " + std::to_string(header.headerSize) + " is not 64");
     }
-    const std::uint32_t sectionCount = header.u32();
-    header.u32();  // flags
-    const std::uint64_t fileSize = header.u64();
-    if (fileSize != bytes.size()) {
-        return fail("truncated or padded: the header says " + std::to_string(fileSize) +
+    if (header.fileSize != bytes.size()) {
+        return fail("truncated or padded: the header says " + std::to_string(header.fileSize) +
                     " bytes, the file has " + std::to_string(bytes.size()));
     }
-    PlantLod lod;
-    lod.boundsMinimum = header.vec3();
-    lod.boundsMaximum = header.vec3();
-    const std::uint64_t storedChecksum = header.u64();
-    if (kHeaderSize + static_cast<std::uint64_t>(sectionCount) * kEntrySize > bytes.size()) {
-        return fail("the section table (" + std::to_string(sectionCount) +
+    if (kHeaderSize + static_cast<std::uint64_t>(header.sectionCount) * kEntrySize > bytes.size()) {
+        return fail("the section table (" + std::to_string(header.sectionCount) +
                     " entries) runs past the end of the file");
     }
     const std::uint64_t checksum = fnv1a(bytes.subspan(kHeaderSize));
-    if (checksum != storedChecksum) {
-        return fail("checksum mismatch (stored " + hex(storedChecksum) + ", computed " +
+    if (checksum != header.checksum) {
+        return fail("checksum mismatch (stored " + hex(header.checksum) + ", computed " +
                     hex(checksum) + "): the file is corrupt");
     }
-    PlodFileInfo parsed;
-    parsed.version = version;
-    parsed.fileSize = fileSize;
-    Reader table(bytes, kHeaderSize);
-    const PlodSectionInfo* level = nullptr;
-    const PlodSectionInfo* ellipsoid = nullptr;
-    const PlodSectionInfo* line = nullptr;
-    const PlodSectionInfo* nameSection = nullptr;
-    const PlodSectionInfo* billboardLevels = nullptr;
-    const PlodSectionInfo* billboardQuads = nullptr;
-    const PlodSectionInfo* billboardAtlases = nullptr;
-    parsed.sections.reserve(sectionCount);
+    return header;
+}
+
+// The table entries, each inside the file, aligned, and count × stride = size.
+Result<std::vector<PlodSectionInfo>> readSectionTable(std::span<const std::uint8_t> bytes,
+                                                      std::uint32_t sectionCount,
+                                                      const Failure& fail) {
+    std::vector<PlodSectionInfo> sections;
+    sections.reserve(sectionCount);
     for (std::uint32_t i = 0; i < sectionCount; ++i) {
+        const auto entry = plod::read<plod::SectionEntry>(bytes, kHeaderSize + i * kEntrySize);
         PlodSectionInfo s;
-        const std::size_t at = kHeaderSize + i * kEntrySize;
-        s.tag.assign(reinterpret_cast<const char*>(bytes.data() + at), 4);
-        table.u32();
-        table.u32();  // section version
-        s.offset = table.u64();
-        s.size = table.u64();
-        s.count = table.u32();
-        s.stride = table.u32();
+        s.tag.assign(entry.tag, 4);
+        s.offset = entry.offset;
+        s.size = entry.size;
+        s.count = entry.count;
+        s.stride = entry.stride;
         const std::string label = "section '" + s.tag + "'";
         if (s.offset % kAlignment != 0) {
             return fail(label + " offset " + std::to_string(s.offset) + " is not 64-byte aligned");
@@ -335,90 +228,89 @@ Result<PlantLod> decodePlod(std::span<const std::uint8_t> bytes, const std::stri
                         " bytes need " +
                         std::to_string(static_cast<std::uint64_t>(s.count) * s.stride));
         }
-        parsed.sections.push_back(s);
+        sections.push_back(s);
     }
-    for (const PlodSectionInfo& s : parsed.sections) {
-        const auto expect = [&](std::uint32_t stride) -> Status {
-            if (s.stride != stride) {
-                return fail("section '" + s.tag + "' element size " + std::to_string(s.stride) +
-                            ", expected " + std::to_string(stride));
+    return sections;
+}
+
+// The sections this reader knows (others are skipped), with their element sizes checked.
+struct KnownSections {
+    const PlodSectionInfo* name = nullptr;
+    const PlodSectionInfo* levels = nullptr;
+    const PlodSectionInfo* ellipsoids = nullptr;
+    const PlodSectionInfo* lines = nullptr;
+    const PlodSectionInfo* billboardLevels = nullptr;
+    const PlodSectionInfo* billboardQuads = nullptr;
+    const PlodSectionInfo* billboardAtlases = nullptr;
+};
+
+Result<KnownSections> findSections(const std::vector<PlodSectionInfo>& sections,
+                                   const Failure& fail) {
+    KnownSections known;
+    const struct {
+        const char* tag;
+        std::uint32_t stride;
+        const PlodSectionInfo* KnownSections::*slot;
+    } kinds[] = {
+        {"LEVL", strideOf<PlantLodLevel>(), &KnownSections::levels},
+        {"ELLI", strideOf<LodEllipsoid>(), &KnownSections::ellipsoids},
+        {"LINE", strideOf<LodLine>(), &KnownSections::lines},
+        {"NAME", 1, &KnownSections::name},
+        {"BBCL", strideOf<plod::BillboardLevelEntry>(), &KnownSections::billboardLevels},
+        {"BBCQ", strideOf<BillboardQuad>(), &KnownSections::billboardQuads},
+        {"BBCA", 1, &KnownSections::billboardAtlases},
+    };
+    for (const PlodSectionInfo& s : sections) {
+        for (const auto& kind : kinds) {
+            if (s.tag != kind.tag) {
+                continue;
             }
-            return Status::success();
-        };
-        Status status;
-        if (s.tag == "LEVL") {
-            level = &s;
-            status = expect(kLevelStride);
-        } else if (s.tag == "ELLI") {
-            ellipsoid = &s;
-            status = expect(kEllipsoidStride);
-        } else if (s.tag == "LINE") {
-            line = &s;
-            status = expect(kLineStride);
-        } else if (s.tag == "NAME") {
-            nameSection = &s;
-            status = expect(1);
-        } else if (s.tag == "BBCL") {
-            billboardLevels = &s;
-            status = expect(kBillboardLevelStride);
-        } else if (s.tag == "BBCQ") {
-            billboardQuads = &s;
-            status = expect(kBillboardQuadStride);
-        } else if (s.tag == "BBCA") {
-            billboardAtlases = &s;
-            status = expect(1);
-        }
-        if (!status) {
-            return status.error();
+            known.*kind.slot = &s;
+            if (s.stride != kind.stride) {
+                return fail("section '" + s.tag + "' element size " + std::to_string(s.stride) +
+                            ", expected " + std::to_string(kind.stride));
+            }
         }
     }
     for (const auto& [section, tag] :
-         {std::pair{level, "LEVL"}, std::pair{ellipsoid, "ELLI"}, std::pair{line, "LINE"}}) {
+         {std::pair{known.levels, "LEVL"}, std::pair{known.ellipsoids, "ELLI"},
+          std::pair{known.lines, "LINE"}}) {
         if (!section) {
             return fail(std::string("missing section '") + tag + "'");
         }
     }
-    if (nameSection) {
-        lod.name.assign(reinterpret_cast<const char*>(bytes.data() + nameSection->offset),
-                        nameSection->size);
+    return known;
+}
+
+template <typename Record>
+std::vector<Record> readRecords(std::span<const std::uint8_t> bytes,
+                                const PlodSectionInfo& section) {
+    std::vector<Record> records;
+    records.reserve(section.count);
+    for (std::uint32_t i = 0; i < section.count; ++i) {
+        records.push_back(
+            plod::read<Record>(bytes, section.offset + std::uint64_t{i} * section.stride));
     }
-    Reader r(bytes, level->offset);
-    for (std::uint32_t i = 0; i < level->count; ++i) {
-        PlantLodLevel l;
-        l.errorMinimum = r.f32();
-        l.errorMaximum = r.f32();
-        l.ellipsoidCount = r.u32();
-        l.lineCount = r.u32();
-        l.imageError = r.f32();
-        l.alphaThreshold = r.f32();
-        l.primitiveScale = r.f32();
-        r.u32();
+    return records;
+}
+
+Status checkLevels(const std::vector<PlantLodLevel>& levels, const Failure& fail) {
+    for (std::size_t i = 0; i < levels.size(); ++i) {
+        const PlantLodLevel& l = levels[i];
         if (std::isnan(l.errorMinimum) || std::isnan(l.errorMaximum) ||
             l.errorMinimum > l.errorMaximum) {
             return fail("level " + std::to_string(i) + " has an invalid error interval");
         }
-        lod.levels.push_back(l);
     }
-    r = Reader(bytes, ellipsoid->offset);
-    std::vector<std::uint32_t> perLevel(lod.levels.size(), 0);
-    for (std::uint32_t i = 0; i < ellipsoid->count; ++i) {
-        LodEllipsoid e;
-        e.center = r.vec3();
-        e.weight = r.f32();
-        for (int k = 0; k < 3; ++k) {
-            e.axes[k] = r.vec3();
-            e.radii[k] = r.f32();
-        }
-        e.color = r.vec3();
-        e.ambientOcclusion = r.f32();
-        e.noiseLevel = r.f32();
-        e.alphaThreshold = r.f32();
-        e.errorMinimum = r.f32();
-        e.errorMaximum = r.f32();
-        e.level = r.u32();
-        r.u32();
-        r.u32();
-        r.u32();
+    return Status::success();
+}
+
+// Finite geometry, existing levels, and as many ellipsoids per level as the level lists.
+Status checkEllipsoids(const std::vector<LodEllipsoid>& ellipsoids,
+                       const std::vector<PlantLodLevel>& levels, const Failure& fail) {
+    std::vector<std::uint32_t> perLevel(levels.size(), 0);
+    for (std::size_t i = 0; i < ellipsoids.size(); ++i) {
+        const LodEllipsoid& e = ellipsoids[i];
         if (!finite(e.center) || !finite(e.radii) || !finite(e.axes[0]) || !finite(e.axes[1]) ||
             !finite(e.axes[2])) {
             return fail("ellipsoid " + std::to_string(i) +
@@ -430,91 +322,129 @@ Result<PlantLod> decodePlod(std::span<const std::uint8_t> bytes, const std::stri
                         std::to_string(perLevel.size()) + " levels");
         }
         ++perLevel[e.level];
-        lod.ellipsoids.push_back(e);
     }
     for (std::size_t k = 0; k < perLevel.size(); ++k) {
-        if (perLevel[k] != lod.levels[k].ellipsoidCount) {
+        if (perLevel[k] != levels[k].ellipsoidCount) {
             return fail("level " + std::to_string(k) + " lists " +
-                        std::to_string(lod.levels[k].ellipsoidCount) +
+                        std::to_string(levels[k].ellipsoidCount) +
                         " ellipsoids, the ellipsoid section has " + std::to_string(perLevel[k]));
         }
     }
-    r = Reader(bytes, line->offset);
-    for (std::uint32_t i = 0; i < line->count; ++i) {
-        LodLine l;
-        l.start = r.vec3();
-        l.startRadius = r.f32();
-        l.end = r.vec3();
-        l.endRadius = r.f32();
-        l.color = r.vec3();
-        l.ambientOcclusion = r.f32();
-        l.weight = r.f32();
-        l.errorMinimum = r.f32();
-        l.errorMaximum = r.f32();
-        r.u32();
+    return Status::success();
+}
+
+Status checkLines(const std::vector<LodLine>& lines, const Failure& fail) {
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        const LodLine& l = lines[i];
         if (!finite(l.start) || !finite(l.end) || !std::isfinite(l.startRadius) ||
             !std::isfinite(l.endRadius)) {
             return fail("line " + std::to_string(i) + " has a non-finite end point or radius");
         }
-        lod.lines.push_back(l);
     }
-    if (billboardLevels || billboardQuads || billboardAtlases) {
-        if (!billboardLevels || !billboardQuads || !billboardAtlases) {
+    return Status::success();
+}
+
+// The billboard levels with their quads and atlases.
+Result<BillboardCloud> readBillboards(std::span<const std::uint8_t> bytes,
+                                      const KnownSections& known, const Failure& fail) {
+    const std::vector<BillboardQuad> quads =
+        readRecords<BillboardQuad>(bytes, *known.billboardQuads);
+    for (std::size_t i = 0; i < quads.size(); ++i) {
+        const BillboardQuad& q = quads[i];
+        if (!finite(q.corners[0]) || !finite(q.corners[1]) || !finite(q.corners[2]) ||
+            !finite(q.corners[3]) || !finite(q.normal)) {
+            return fail("billboard quad " + std::to_string(i) +
+                        " has a non-finite corner or normal");
+        }
+    }
+    const PlodSectionInfo& atlases = *known.billboardAtlases;
+    const std::vector<plod::BillboardLevelEntry> entries =
+        readRecords<plod::BillboardLevelEntry>(bytes, *known.billboardLevels);
+    BillboardCloud cloud;
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+        const plod::BillboardLevelEntry& entry = entries[i];
+        const std::uint64_t first = entry.firstQuad;
+        const std::uint64_t count = entry.quadCount;
+        const std::uint32_t width = entry.atlasWidth;
+        const std::uint32_t height = entry.atlasHeight;
+        const std::string label = "billboard level " + std::to_string(i);
+        if (first + count > quads.size()) {
+            return fail(label + " names quads [" + std::to_string(first) + ", " +
+                        std::to_string(first + count) + "), the file has " +
+                        std::to_string(quads.size()));
+        }
+        const std::uint64_t atlasBytes = std::uint64_t{width} * height * 4u;
+        if (width > 65536 || height > 65536 || entry.atlasOffset > atlases.size ||
+            atlasBytes > atlases.size - entry.atlasOffset) {
+            return fail(label + ": its " + std::to_string(width) + " x " + std::to_string(height) +
+                        " atlas at byte " + std::to_string(entry.atlasOffset) +
+                        " runs past the section 'BBCA' (" + std::to_string(atlases.size) +
+                        " bytes)");
+        }
+        BillboardLevel level;
+        level.epsilon = entry.epsilon;
+        level.imageError = entry.imageError;
+        level.quads.assign(quads.begin() + static_cast<std::ptrdiff_t>(first),
+                           quads.begin() + static_cast<std::ptrdiff_t>(first + count));
+        level.atlas.width = static_cast<int>(width);
+        level.atlas.height = static_cast<int>(height);
+        const std::uint8_t* atlas = bytes.data() + atlases.offset + entry.atlasOffset;
+        level.atlas.rgba.assign(atlas, atlas + atlasBytes);
+        cloud.levels.push_back(std::move(level));
+    }
+    return cloud;
+}
+
+}  // namespace
+
+Result<PlantLod> decodePlod(std::span<const std::uint8_t> bytes, const std::string& name,
+                            PlodFileInfo* info) {
+    const Failure fail{name};
+    Result<plod::Header> header = readHeader(bytes, fail);
+    if (!header) {
+        return header.error();
+    }
+    PlodFileInfo parsed;
+    parsed.version = header->version;
+    parsed.fileSize = header->fileSize;
+    Result<std::vector<PlodSectionInfo>> table =
+        readSectionTable(bytes, header->sectionCount, fail);
+    if (!table) {
+        return table.error();
+    }
+    parsed.sections = std::move(*table);
+    Result<KnownSections> known = findSections(parsed.sections, fail);
+    if (!known) {
+        return known.error();
+    }
+    PlantLod lod;
+    lod.boundsMinimum = header->boundsMinimum;
+    lod.boundsMaximum = header->boundsMaximum;
+    if (known->name) {
+        lod.name.assign(reinterpret_cast<const char*>(bytes.data() + known->name->offset),
+                        known->name->size);
+    }
+    lod.levels = readRecords<PlantLodLevel>(bytes, *known->levels);
+    lod.ellipsoids = readRecords<LodEllipsoid>(bytes, *known->ellipsoids);
+    lod.lines = readRecords<LodLine>(bytes, *known->lines);
+    if (Status levels = checkLevels(lod.levels, fail); !levels) {
+        return levels.error();
+    }
+    if (Status ellipsoids = checkEllipsoids(lod.ellipsoids, lod.levels, fail); !ellipsoids) {
+        return ellipsoids.error();
+    }
+    if (Status lines = checkLines(lod.lines, fail); !lines) {
+        return lines.error();
+    }
+    if (known->billboardLevels || known->billboardQuads || known->billboardAtlases) {
+        if (!known->billboardLevels || !known->billboardQuads || !known->billboardAtlases) {
             return fail("billboard clouds need the sections 'BBCL', 'BBCQ' and 'BBCA' together");
         }
-        std::vector<BillboardQuad> quads;
-        r = Reader(bytes, billboardQuads->offset);
-        for (std::uint32_t i = 0; i < billboardQuads->count; ++i) {
-            BillboardQuad q;
-            for (glm::vec3& c : q.corners) {
-                c = r.vec3();
-            }
-            for (glm::vec2& uv : q.atlasUvs) {
-                uv = r.vec2();
-            }
-            q.normal = r.vec3();
-            const std::uint32_t flags = r.u32();
-            q.part = (flags & 1u) != 0 ? PlantPart::Branch : PlantPart::Leaf;
-            q.cardboard = (flags & 2u) != 0;
-            if (!finite(q.corners[0]) || !finite(q.corners[1]) || !finite(q.corners[2]) ||
-                !finite(q.corners[3]) || !finite(q.normal)) {
-                return fail("billboard quad " + std::to_string(i) +
-                            " has a non-finite corner or normal");
-            }
-            quads.push_back(q);
+        Result<BillboardCloud> billboards = readBillboards(bytes, *known, fail);
+        if (!billboards) {
+            return billboards.error();
         }
-        r = Reader(bytes, billboardLevels->offset);
-        for (std::uint32_t i = 0; i < billboardLevels->count; ++i) {
-            BillboardLevel billboard;
-            billboard.epsilon = r.f32();
-            billboard.imageError = r.f32();
-            const std::uint64_t first = r.u32();
-            const std::uint64_t count = r.u32();
-            const std::uint32_t width = r.u32();
-            const std::uint32_t height = r.u32();
-            const std::uint64_t atlasOffset = r.u64();
-            const std::string label = "billboard level " + std::to_string(i);
-            if (first + count > quads.size()) {
-                return fail(label + " names quads [" + std::to_string(first) + ", " +
-                            std::to_string(first + count) + "), the file has " +
-                            std::to_string(quads.size()));
-            }
-            const std::uint64_t atlasBytes = std::uint64_t{width} * height * 4u;
-            if (width > 65536 || height > 65536 || atlasOffset > billboardAtlases->size ||
-                atlasBytes > billboardAtlases->size - atlasOffset) {
-                return fail(label + ": its " + std::to_string(width) + " x " +
-                            std::to_string(height) + " atlas at byte " +
-                            std::to_string(atlasOffset) + " runs past the section 'BBCA' (" +
-                            std::to_string(billboardAtlases->size) + " bytes)");
-            }
-            billboard.quads.assign(quads.begin() + static_cast<std::ptrdiff_t>(first),
-                                   quads.begin() + static_cast<std::ptrdiff_t>(first + count));
-            billboard.atlas.width = static_cast<int>(width);
-            billboard.atlas.height = static_cast<int>(height);
-            const std::uint8_t* atlas = bytes.data() + billboardAtlases->offset + atlasOffset;
-            billboard.atlas.rgba.assign(atlas, atlas + atlasBytes);
-            lod.billboards.levels.push_back(std::move(billboard));
-        }
+        lod.billboards = std::move(*billboards);
     }
     if (info) {
         *info = std::move(parsed);

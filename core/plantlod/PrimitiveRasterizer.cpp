@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "TexelColour.h"
 #include "sylva/core/base/Check.h"
 #include "sylva/core/plantlod/EllipsoidNoise.h"
 
@@ -16,11 +17,6 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 float luminance(const glm::vec3& c) {
     return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
-}
-
-float srgbToLinear(std::uint8_t value) {
-    const float c = value / 255.0f;
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
 // A material prepared for drawing: linear luminance and alpha per texel.
@@ -51,8 +47,8 @@ PreparedMaterial prepare(const PlantModel& model, int index) {
         prepared.height = texture.height;
         const glm::vec3 base(material.baseColor);
         for (std::size_t i = 0; i < texture.rgba.size(); i += 4) {
-            const glm::vec3 c(srgbToLinear(texture.rgba[i]), srgbToLinear(texture.rgba[i + 1]),
-                              srgbToLinear(texture.rgba[i + 2]));
+            const glm::vec3 c(texelToLinear(texture.rgba[i]), texelToLinear(texture.rgba[i + 1]),
+                              texelToLinear(texture.rgba[i + 2]));
             prepared.luminance.push_back(luminance(c * base));
             prepared.alpha.push_back(texture.rgba[i + 3] / 255.0f);
         }

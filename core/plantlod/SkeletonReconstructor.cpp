@@ -328,61 +328,67 @@ struct Attachment {
     Vector point{0.0};
 };
 
-}  // namespace
+constexpr double kUnreached = std::numeric_limits<double>::infinity();
 
-std::vector<SkeletonSegment> SkeletonReconstructor::reconstruct(
-    const std::vector<PlantMesh>& meshes) {
-    // Weld: vertices with bit-identical positions are one (tube seams, shared rings).
+// The branch triangles welded: vertices with bit-identical positions are one (tube
+// seams, shared rings), `canonical` maps every vertex to its first copy.
+struct WeldedBranches {
     std::vector<Vector> positions;
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> byPosition;
     std::vector<std::uint32_t> canonical;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;  // three per triangle
+};
+
+WeldedBranches weldBranches(const std::vector<PlantMesh>& meshes) {
+    WeldedBranches welded;
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> byPosition;
     for (const PlantMesh& mesh : meshes) {
         if (mesh.part != PlantPart::Branch) {
             continue;
         }
-        const std::uint32_t base = std::uint32_t(positions.size());
+        const std::uint32_t base = std::uint32_t(welded.positions.size());
         for (const glm::vec3& p : mesh.positions) {
             std::uint32_t bits[3];
             std::memcpy(bits, &p, sizeof bits);
             const std::uint64_t key = (std::uint64_t(bits[0]) * 0x9E3779B97F4A7C15ull) ^
                                       (std::uint64_t(bits[1]) * 0xC2B2AE3D27D4EB4Full) ^
                                       std::uint64_t(bits[2]);
-            std::uint32_t id = std::uint32_t(positions.size());
+            std::uint32_t id = std::uint32_t(welded.positions.size());
             for (std::uint32_t other : byPosition[key]) {
-                if (glm::vec3(positions[other]) == p) {
+                if (glm::vec3(welded.positions[other]) == p) {
                     id = other;
                     break;
                 }
             }
-            if (id == positions.size()) {
+            if (id == welded.positions.size()) {
                 byPosition[key].push_back(id);
             }
-            canonical.push_back(id);
-            positions.emplace_back(p);
+            welded.canonical.push_back(id);
+            welded.positions.emplace_back(p);
         }
         for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
             for (int k = 0; k < 3; ++k) {
-                edges.emplace_back(base + mesh.indices[i + std::size_t(k)],
-                                   base + mesh.indices[i + std::size_t((k + 1) % 3)]);
+                welded.edges.emplace_back(base + mesh.indices[i + std::size_t(k)],
+                                          base + mesh.indices[i + std::size_t((k + 1) % 3)]);
             }
         }
     }
-    if (positions.empty()) {
-        return {};
+    return welded;
+}
+
+// The canonical vertices of each connected component (unique positions only: duplicates
+// would weight seams), in vertex order.
+std::vector<std::vector<std::uint32_t>> connectedComponents(const WeldedBranches& welded) {
+    UnionFind sets(welded.positions.size());
+    for (std::uint32_t i = 0; i < welded.positions.size(); ++i) {
+        sets.unite(i, welded.canonical[i]);
     }
-    UnionFind sets(positions.size());
-    for (std::uint32_t i = 0; i < positions.size(); ++i) {
-        sets.unite(i, canonical[i]);
-    }
-    for (const auto& [a, b] : edges) {
+    for (const auto& [a, b] : welded.edges) {
         sets.unite(a, b);
     }
-    // Points of each component, unique positions only (duplicates would weight seams).
     std::unordered_map<std::uint32_t, std::size_t> componentOf;
     std::vector<std::vector<std::uint32_t>> componentVertices;
-    for (std::uint32_t i = 0; i < positions.size(); ++i) {
-        if (canonical[i] != i) {
+    for (std::uint32_t i = 0; i < welded.positions.size(); ++i) {
+        if (welded.canonical[i] != i) {
             continue;
         }
         const std::uint32_t root = sets.find(i);
@@ -392,84 +398,109 @@ std::vector<SkeletonSegment> SkeletonReconstructor::reconstruct(
         }
         componentVertices[it->second].push_back(i);
     }
-    std::vector<std::vector<std::pair<std::uint32_t, double>>> adjacency(positions.size());
-    for (const auto& [a, b] : edges) {
-        const std::uint32_t ca = canonical[a];
-        const std::uint32_t cb = canonical[b];
+    return componentVertices;
+}
+
+// The welded vertex graph: edge lengths, and the boundary edges (used by one triangle
+// only), which are the open ends of tubes.
+struct SurfaceGraph {
+    std::vector<std::vector<std::pair<std::uint32_t, double>>> adjacency;
+    std::vector<std::vector<std::uint32_t>> boundary;
+};
+
+SurfaceGraph surfaceGraph(const WeldedBranches& welded) {
+    SurfaceGraph graph;
+    graph.adjacency.resize(welded.positions.size());
+    for (const auto& [a, b] : welded.edges) {
+        const std::uint32_t ca = welded.canonical[a];
+        const std::uint32_t cb = welded.canonical[b];
         if (ca != cb) {
-            const double length = glm::length(positions[ca] - positions[cb]);
-            adjacency[ca].emplace_back(cb, length);
-            adjacency[cb].emplace_back(ca, length);
+            const double length = glm::length(welded.positions[ca] - welded.positions[cb]);
+            graph.adjacency[ca].emplace_back(cb, length);
+            graph.adjacency[cb].emplace_back(ca, length);
         }
     }
-    std::vector<double> geodesic(positions.size(), std::numeric_limits<double>::infinity());
-    // Boundary edges (used by one triangle only): the open ends of tubes.
     std::unordered_map<std::uint64_t, int> edgeUse;
-    for (const auto& [a, b] : edges) {
-        const std::uint32_t ca = std::min(canonical[a], canonical[b]);
-        const std::uint32_t cb = std::max(canonical[a], canonical[b]);
+    for (const auto& [a, b] : welded.edges) {
+        const std::uint32_t ca = std::min(welded.canonical[a], welded.canonical[b]);
+        const std::uint32_t cb = std::max(welded.canonical[a], welded.canonical[b]);
         if (ca != cb) {
             ++edgeUse[(std::uint64_t(ca) << 32) | cb];
         }
     }
-    std::vector<std::vector<std::uint32_t>> boundary(positions.size());
+    graph.boundary.resize(welded.positions.size());
     for (const auto& [key, uses] : edgeUse) {
         if (uses == 1) {
-            boundary[std::uint32_t(key >> 32)].push_back(std::uint32_t(key & 0xFFFFFFFFu));
-            boundary[std::uint32_t(key & 0xFFFFFFFFu)].push_back(std::uint32_t(key >> 32));
+            graph.boundary[std::uint32_t(key >> 32)].push_back(std::uint32_t(key & 0xFFFFFFFFu));
+            graph.boundary[std::uint32_t(key & 0xFFFFFFFFu)].push_back(std::uint32_t(key >> 32));
         }
     }
+    return graph;
+}
 
+// Each vertex's distance along the stem from its open end. Double sweep: the vertex
+// farthest (along the surface) from an end of the principal axis is one end of the
+// stem; distances from the whole open end there (the boundary loop through it, when it
+// lies on one) give every ring of a tube one distance, even a fat one. `geodesic` holds
+// kUnreached for every vertex on entry and on return.
+std::vector<double> distancesAlongStem(const std::vector<std::uint32_t>& vertices,
+                                       const std::vector<Vector>& points,
+                                       const WeldedBranches& welded, const SurfaceGraph& graph,
+                                       std::vector<double>& geodesic) {
+    const Vector centroid = centroidOf(points);
+    std::array<double, 3> values{};
+    std::array<Vector, 3> vectors{};
+    covarianceEigen(points, centroid, values, vectors);
+    const Vector axis =
+        vectors[std::size_t(std::max_element(values.begin(), values.end()) - values.begin())];
+    std::uint32_t start = vertices.front();
+    for (std::uint32_t v : vertices) {
+        if (glm::dot(welded.positions[v], axis) < glm::dot(welded.positions[start], axis)) {
+            start = v;
+        }
+    }
+    geodesicDistances({start}, graph.adjacency, geodesic);
+    std::uint32_t end = start;
+    for (std::uint32_t v : vertices) {
+        if (geodesic[v] != kUnreached && geodesic[v] > geodesic[end]) {
+            end = v;
+        }
+    }
+    for (std::uint32_t v : vertices) {
+        geodesic[v] = kUnreached;
+    }
+    std::vector<std::uint32_t> sources = {end};
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+        for (std::uint32_t next : graph.boundary[sources[i]]) {
+            if (std::find(sources.begin(), sources.end(), next) == sources.end()) {
+                sources.push_back(next);
+            }
+        }
+    }
+    geodesicDistances(sources, graph.adjacency, geodesic);
+    std::vector<double> along;
+    for (std::uint32_t v : vertices) {
+        along.push_back(geodesic[v]);
+        geodesic[v] = kUnreached;
+    }
+    return along;
+}
+
+// Components of at least four vertices as chains of pieces.
+std::vector<Component> fitComponents(const WeldedBranches& welded) {
+    const SurfaceGraph graph = surfaceGraph(welded);
+    std::vector<double> geodesic(welded.positions.size(), kUnreached);
     std::vector<Component> components;
-    for (const std::vector<std::uint32_t>& vertices : componentVertices) {
+    for (const std::vector<std::uint32_t>& vertices : connectedComponents(welded)) {
         if (vertices.size() < 4) {
             continue;
         }
         std::vector<Vector> points;
         for (std::uint32_t v : vertices) {
-            points.push_back(positions[v]);
+            points.push_back(welded.positions[v]);
         }
-        // Double sweep: the vertex farthest (along the surface) from an end of the
-        // principal axis is one end of the stem; distances from it order the stem.
-        const Vector centroid = centroidOf(points);
-        std::array<double, 3> values{};
-        std::array<Vector, 3> vectors{};
-        covarianceEigen(points, centroid, values, vectors);
-        const Vector axis =
-            vectors[std::size_t(std::max_element(values.begin(), values.end()) - values.begin())];
-        std::uint32_t start = vertices.front();
-        for (std::uint32_t v : vertices) {
-            if (glm::dot(positions[v], axis) < glm::dot(positions[start], axis)) {
-                start = v;
-            }
-        }
-        geodesicDistances({start}, adjacency, geodesic);
-        std::uint32_t end = start;
-        for (std::uint32_t v : vertices) {
-            if (geodesic[v] != std::numeric_limits<double>::infinity() &&
-                geodesic[v] > geodesic[end]) {
-                end = v;
-            }
-        }
-        for (std::uint32_t v : vertices) {
-            geodesic[v] = std::numeric_limits<double>::infinity();
-        }
-        // Distances from the whole open end (the boundary loop through `end`, when it
-        // lies on one) so that every ring of a tube gets one distance, even a fat one.
-        std::vector<std::uint32_t> sources = {end};
-        for (std::size_t i = 0; i < sources.size(); ++i) {
-            for (std::uint32_t next : boundary[sources[i]]) {
-                if (std::find(sources.begin(), sources.end(), next) == sources.end()) {
-                    sources.push_back(next);
-                }
-            }
-        }
-        geodesicDistances(sources, adjacency, geodesic);
-        std::vector<double> along;
-        for (std::uint32_t v : vertices) {
-            along.push_back(geodesic[v]);
-            geodesic[v] = std::numeric_limits<double>::infinity();
-        }
+        const std::vector<double> along =
+            distancesAlongStem(vertices, points, welded, graph, geodesic);
         Component component;
         component.pieces = fitComponent(points, along);
         component.lowest = std::numeric_limits<double>::max();
@@ -481,13 +512,14 @@ std::vector<SkeletonSegment> SkeletonReconstructor::reconstruct(
                                    : component.pieces.back().endRadius;
         components.push_back(std::move(component));
     }
-    if (components.empty()) {
-        return {};
-    }
+    return components;
+}
 
-    // Root: among the components that reach down to the lowest point, the one thickest
-    // at its lower end (a trunk base, not a drooping branch tip; whole-chain maxima are
-    // fooled by a badly fitted piece).
+// Root: among the components that reach down to the lowest point, the one thickest at
+// its lower end (a trunk base, not a drooping branch tip; whole-chain maxima are fooled
+// by a badly fitted piece).
+std::size_t rootComponent(const std::vector<Component>& components,
+                          const std::vector<Vector>& positions) {
     double lowest = std::numeric_limits<double>::max();
     double highest = std::numeric_limits<double>::lowest();
     for (const Vector& p : positions) {
@@ -503,12 +535,38 @@ std::vector<SkeletonSegment> SkeletonReconstructor::reconstruct(
             root = i;
         }
     }
+    return root;
+}
 
-    std::vector<SkeletonSegment> skeleton;
-    std::vector<bool> attached(components.size(), false);
-    std::vector<Attachment> best(components.size());
-    auto append = [&](std::size_t index, bool reversed, int parent, const Vector* startPoint) {
-        std::vector<Piece> pieces = components[index].pieces;
+// Prim-style linking: the components join the growing skeleton one at a time, always
+// the unattached one whose nearer end lies closest to a segment already there.
+class SkeletonLinker {
+public:
+    explicit SkeletonLinker(const std::vector<Component>& components)
+        : components_(components), attached_(components.size(), false), best_(components.size()) {}
+
+    std::vector<SkeletonSegment> link(std::size_t root) {
+        const Component& trunk = components_[root];
+        append(root, trunk.pieces.front().start.z > trunk.pieces.back().end.z, -1, nullptr);
+        for (std::size_t round = 1; round < components_.size(); ++round) {
+            std::size_t next = components_.size();
+            for (std::size_t i = 0; i < components_.size(); ++i) {
+                if (!attached_[i] &&
+                    (next == components_.size() || best_[i].distance < best_[next].distance)) {
+                    next = i;
+                }
+            }
+            const Attachment attachment = best_[next];
+            append(next, attachment.fromEnd, attachment.segment, &attachment.point);
+        }
+        return std::move(skeleton_);
+    }
+
+private:
+    // Appends a component's chain (reversed when it attaches by its last end), its first
+    // segment starting at `startPoint` on segment `parent`.
+    void append(std::size_t index, bool reversed, int parent, const Vector* startPoint) {
+        std::vector<Piece> pieces = components_[index].pieces;
         if (reversed) {
             std::reverse(pieces.begin(), pieces.end());
             for (Piece& piece : pieces) {
@@ -519,7 +577,7 @@ std::vector<SkeletonSegment> SkeletonReconstructor::reconstruct(
         if (startPoint != nullptr) {
             pieces.front().start = *startPoint;
         }
-        const int first = int(skeleton.size());
+        const int first = int(skeleton_.size());
         for (std::size_t k = 0; k < pieces.size(); ++k) {
             SkeletonSegment segment;
             segment.start = glm::vec3(pieces[k].start);
@@ -527,42 +585,52 @@ std::vector<SkeletonSegment> SkeletonReconstructor::reconstruct(
             segment.startRadius = float(pieces[k].startRadius);
             segment.endRadius = float(pieces[k].endRadius);
             segment.parent = k == 0 ? parent : first + int(k) - 1;
-            skeleton.push_back(segment);
+            skeleton_.push_back(segment);
         }
-        attached[index] = true;
-        // Update every unattached component's best attachment against the new segments.
-        for (std::size_t other = 0; other < components.size(); ++other) {
-            if (attached[other]) {
+        attached_[index] = true;
+        updateAttachments(std::size_t(first));
+    }
+
+    // Every unattached component's best attachment against the segments from `first` on.
+    void updateAttachments(std::size_t first) {
+        for (std::size_t other = 0; other < components_.size(); ++other) {
+            if (attached_[other]) {
                 continue;
             }
-            const std::array<Vector, 2> ends = {components[other].pieces.front().start,
-                                                components[other].pieces.back().end};
-            for (std::size_t s = std::size_t(first); s < skeleton.size(); ++s) {
+            const std::array<Vector, 2> ends = {components_[other].pieces.front().start,
+                                                components_[other].pieces.back().end};
+            for (std::size_t s = first; s < skeleton_.size(); ++s) {
                 for (std::size_t e = 0; e < 2; ++e) {
                     Vector closest;
-                    const double distance = distanceToSegment(ends[e], Vector(skeleton[s].start),
-                                                              Vector(skeleton[s].end), closest);
-                    if (distance < best[other].distance) {
-                        best[other] = {distance, e == 1, int(s), closest};
+                    const double distance = distanceToSegment(ends[e], Vector(skeleton_[s].start),
+                                                              Vector(skeleton_[s].end), closest);
+                    if (distance < best_[other].distance) {
+                        best_[other] = {distance, e == 1, int(s), closest};
                     }
                 }
             }
         }
-    };
-    const Component& trunk = components[root];
-    append(root, trunk.pieces.front().start.z > trunk.pieces.back().end.z, -1, nullptr);
-    for (std::size_t round = 1; round < components.size(); ++round) {
-        std::size_t next = components.size();
-        for (std::size_t i = 0; i < components.size(); ++i) {
-            if (!attached[i] &&
-                (next == components.size() || best[i].distance < best[next].distance)) {
-                next = i;
-            }
-        }
-        const Attachment attachment = best[next];
-        append(next, attachment.fromEnd, attachment.segment, &attachment.point);
     }
-    return skeleton;
+
+    const std::vector<Component>& components_;
+    std::vector<SkeletonSegment> skeleton_;
+    std::vector<bool> attached_;
+    std::vector<Attachment> best_;
+};
+
+}  // namespace
+
+std::vector<SkeletonSegment> SkeletonReconstructor::reconstruct(
+    const std::vector<PlantMesh>& meshes) {
+    const WeldedBranches welded = weldBranches(meshes);
+    if (welded.positions.empty()) {
+        return {};
+    }
+    const std::vector<Component> components = fitComponents(welded);
+    if (components.empty()) {
+        return {};
+    }
+    return SkeletonLinker(components).link(rootComponent(components, welded.positions));
 }
 
 }  // namespace sylva

@@ -49,6 +49,45 @@ double sample(const ImageTile& tile, int channel, double longitude, double latit
            fv * ((1 - fu) * tile.at(i0, j0 + 1, channel) + fu * tile.at(i0 + 1, j0 + 1, channel));
 }
 
+// An image channel: the blend of base b and over o by the mode (before the weight).
+double blendChannel(BlendMode mode, double b, double o) {
+    switch (mode) {
+        case BlendMode::Normal:
+            return o;
+        case BlendMode::Multiply:
+            return b * o;
+        case BlendMode::Screen:
+            return 1.0 - (1.0 - b) * (1.0 - o);
+        case BlendMode::Add:
+            return b + o;
+        case BlendMode::Min:
+            return std::min(b, o);
+        case BlendMode::Max:
+            return std::max(b, o);
+    }
+    return o;
+}
+
+// An elevation: replace (any other mode), add, min or max with weight w.
+double blendHeight(BlendMode mode, double b, double o, double w) {
+    switch (mode) {
+        case BlendMode::Add:
+            return b + w * o;
+        case BlendMode::Min:
+            return b + (std::min(b, o) - b) * w;
+        case BlendMode::Max:
+            return b + (std::max(b, o) - b) * w;
+        default:
+            return b + (o - b) * w;
+    }
+}
+
+// The input tiles of one produce: base and over always, the mask, the over-source's
+// coverage and its coarse (feather) tile when they apply.
+struct BlendInputs {
+    TilePointer base, over, mask, coverage, coarse;
+};
+
 }  // namespace
 
 BlendSource::BlendSource(std::string name, const Source* base, const Source* over,
@@ -102,33 +141,29 @@ int BlendSource::featherLevel(double featherMetres, int tileSize, int level) {
 }
 
 Result<TilePointer> BlendSource::produce(const TileKey& key, TileProvider& provider) const {
-    Result<TilePointer> baseTile = provider.tile(*base_, key);
-    if (!baseTile) {
-        return baseTile.error();
-    }
-    Result<TilePointer> overTile = provider.tile(*over_, key);
-    if (!overTile) {
-        return overTile.error();
-    }
-    TilePointer maskTile, coverageTile, coarseTile;
-    if (mask_ != nullptr) {
-        Result<TilePointer> m = provider.tile(*mask_, key);
-        if (!m) {
-            return m.error();
+    BlendInputs in;
+    for (auto [source, slot] :
+         {std::pair{base_, &in.base}, std::pair{over_, &in.over}, std::pair{mask_, &in.mask}}) {
+        if (source == nullptr) {
+            continue;
         }
-        maskTile = m.value();
+        Result<TilePointer> tile = provider.tile(*source, key);
+        if (!tile) {
+            return tile.error();
+        }
+        *slot = tile.value();
     }
     const bool image = output() == PortType::Image;
     const int coverageChannel = image ? 3 : 0;
     if (overCoverage_ != nullptr) {
         if (overCoverage_ == over_) {
-            coverageTile = overTile.value();
+            in.coverage = in.over;
         } else {
             Result<TilePointer> c = provider.tile(*overCoverage_, key);
             if (!c) {
                 return c.error();
             }
-            coverageTile = c.value();
+            in.coverage = c.value();
         }
         if (parameters_.feather > 0.0) {
             const int level = featherLevel(parameters_.feather, provider.format().size, key.level);
@@ -136,79 +171,44 @@ Result<TilePointer> BlendSource::produce(const TileKey& key, TileProvider& provi
             if (!c) {
                 return c.error();
             }
-            coarseTile = c.value();
+            in.coarse = c.value();
         }
     }
-    const ImageTile& base = *baseTile.value();
-    const ImageTile& over = *overTile.value();
+    const ImageTile& base = *in.base;
+    const ImageTile& over = *in.over;
     auto tile = std::make_shared<ImageTile>(base);
     const int border = tile->border(), size = tile->size();
     for (int iy = -border; iy < size + border; ++iy) {
         const double latitude = tile->texelLatitude(iy);
         for (int ix = -border; ix < size + border; ++ix) {
             double w = parameters_.opacity;
-            if (maskTile) {
-                w *= std::clamp<double>(maskTile->at(ix, iy, 0), 0.0, 1.0);
+            if (in.mask) {
+                w *= std::clamp<double>(in.mask->at(ix, iy, 0), 0.0, 1.0);
             }
-            if (coverageTile) {
-                w *= std::clamp<double>(coverageTile->at(ix, iy, coverageChannel), 0.0, 1.0);
+            if (in.coverage) {
+                w *= std::clamp<double>(in.coverage->at(ix, iy, coverageChannel), 0.0, 1.0);
             }
-            if (coarseTile && w > 0.0) {
+            if (in.coarse && w > 0.0) {
                 w *= smoothstep(
                     0.5, 1.0,
-                    sample(*coarseTile, coverageChannel, tile->texelLongitude(ix), latitude));
+                    sample(*in.coarse, coverageChannel, tile->texelLongitude(ix), latitude));
             }
             if (w <= 0.0) {
                 continue;
             }
-            if (image) {
-                for (int c = 0; c < 3; ++c) {
-                    const double b = base.at(ix, iy, c), o = over.at(ix, iy, c);
-                    double f = o;
-                    switch (parameters_.mode) {
-                        case BlendMode::Normal:
-                            f = o;
-                            break;
-                        case BlendMode::Multiply:
-                            f = b * o;
-                            break;
-                        case BlendMode::Screen:
-                            f = 1.0 - (1.0 - b) * (1.0 - o);
-                            break;
-                        case BlendMode::Add:
-                            f = b + o;
-                            break;
-                        case BlendMode::Min:
-                            f = std::min(b, o);
-                            break;
-                        case BlendMode::Max:
-                            f = std::max(b, o);
-                            break;
-                    }
-                    tile->at(ix, iy, c) = static_cast<float>(b + (f - b) * w);
-                }
-                if (tile->channels() > 3) {
-                    const double a = base.at(ix, iy, 3);
-                    tile->at(ix, iy, 3) = static_cast<float>(w + a * (1.0 - w));
-                }
-            } else {
-                const double b = base.at(ix, iy, 0), o = over.at(ix, iy, 0);
-                double h = b;
-                switch (parameters_.mode) {
-                    case BlendMode::Add:
-                        h = b + w * o;
-                        break;
-                    case BlendMode::Min:
-                        h = b + (std::min(b, o) - b) * w;
-                        break;
-                    case BlendMode::Max:
-                        h = b + (std::max(b, o) - b) * w;
-                        break;
-                    default:
-                        h = b + (o - b) * w;
-                        break;
-                }
-                tile->at(ix, iy, 0) = static_cast<float>(h);
+            if (!image) {
+                tile->at(ix, iy, 0) = static_cast<float>(
+                    blendHeight(parameters_.mode, base.at(ix, iy, 0), over.at(ix, iy, 0), w));
+                continue;
+            }
+            for (int c = 0; c < 3; ++c) {
+                const double b = base.at(ix, iy, c);
+                const double f = blendChannel(parameters_.mode, b, over.at(ix, iy, c));
+                tile->at(ix, iy, c) = static_cast<float>(b + (f - b) * w);
+            }
+            if (tile->channels() > 3) {
+                const double a = base.at(ix, iy, 3);
+                tile->at(ix, iy, 3) = static_cast<float>(w + a * (1.0 - w));
             }
         }
     }

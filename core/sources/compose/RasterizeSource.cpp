@@ -57,143 +57,218 @@ std::optional<glm::vec3> RasterizeSource::parseHexColor(const std::string& text)
     return out;
 }
 
+namespace {
+
+// Premultiplied accumulation over the tile's texels (border included): colour × alpha
+// and alpha, composited "over" in drawing order.
+class Canvas {
+public:
+    Canvas(int width, bool image, double opacity)
+        : texels_(std::size_t(width) * width),
+          image_(image),
+          opacity_(static_cast<float>(opacity)),
+          colour_(image ? texels_ : 0, glm::vec3(0.0f)),
+          alpha_(texels_, 0.0f) {}
+
+    std::size_t texels() const { return texels_; }
+
+    void add(std::size_t i, float coverage, const glm::vec3& c) {
+        const float a = coverage * opacity_;
+        if (image_) {
+            colour_[i] = c * a + colour_[i] * (1.0f - a);
+        }
+        alpha_[i] = a + alpha_[i] * (1.0f - a);
+    }
+    void composite(const std::vector<float>& coverage, const glm::vec3& c) {
+        for (std::size_t i = 0; i < texels_; ++i) {
+            if (coverage[i] * opacity_ <= 0.0f) {
+                continue;
+            }
+            add(i, coverage[i], c);
+        }
+    }
+
+    // Straight colour + alpha (image) or the alpha alone (mask).
+    TilePointer tile(const TileKey& key, const TileFormat& format, int width) const {
+        auto tile = std::make_shared<ImageTile>(key, format.size, format.border, image_ ? 4 : 1);
+        for (int gy = 0; gy < width; ++gy) {
+            for (int gx = 0; gx < width; ++gx) {
+                const std::size_t i = std::size_t(gy) * width + gx;
+                const int ix = gx - format.border, iy = gy - format.border;
+                if (image_) {
+                    const glm::vec3 straight =
+                        alpha_[i] > 0.0f ? colour_[i] / alpha_[i] : glm::vec3(0.0f);
+                    for (int c = 0; c < 3; ++c) {
+                        tile->at(ix, iy, c) = straight[c];
+                    }
+                    tile->at(ix, iy, 3) = alpha_[i];
+                } else {
+                    tile->at(ix, iy, 0) = alpha_[i];
+                }
+            }
+        }
+        return tile;
+    }
+
+private:
+    std::size_t texels_;
+    bool image_;
+    float opacity_;
+    std::vector<glm::vec3> colour_;
+    std::vector<float> alpha_;
+};
+
+// A feature's colour: `color`, or from the colour attribute (through `colors`, or as a
+// hex string).
+Result<glm::vec3> featureColour(const RasterizeParameters& parameters, const Feature& feature,
+                                std::optional<std::size_t> colorField, const std::string& file) {
+    if (!colorField) {
+        return parameters.color;
+    }
+    const std::string& value = feature.attributes[*colorField];
+    const std::string where = file + ": feature " + std::to_string(feature.id) + ": attribute '" +
+                              parameters.colorAttribute + "'";
+    if (!parameters.colors.empty()) {
+        auto it = std::find_if(parameters.colors.begin(), parameters.colors.end(),
+                               [&](const auto& entry) { return entry.first == value; });
+        if (it == parameters.colors.end()) {
+            return Error{where + ": value '" + value + "' is not in colors"};
+        }
+        return it->second;
+    }
+    if (std::optional<glm::vec3> parsed = RasterizeSource::parseHexColor(value)) {
+        return *parsed;
+    }
+    return Error{where + ": '" + value + "' is not a hex colour such as #1a8c3f"};
+}
+
+// The stroke widths in metres, at least `minimum_texels` wide at the tile's centre row.
+struct StrokeWidths {
+    double outline = 0.0;
+    double line = 0.0;
+};
+
+StrokeWidths strokeWidths(const RasterizeParameters& parameters,
+                          const CoverageRasterizer& rasterizer) {
+    const double minimumWidth =
+        parameters.minimumTexels * rasterizer.metresPerTexel(0.5 * rasterizer.width()).y;
+    StrokeWidths widths;
+    widths.outline = parameters.outline > 0.0 ? std::max(parameters.outline, minimumWidth) : 0.0;
+    widths.line = parameters.lineWidth > 0.0 ? std::max(parameters.lineWidth, minimumWidth) : 0.0;
+    return widths;
+}
+
+// One feature's coverage: filled and/or outlined polygons, stroked lines, point discs.
+void featureCoverage(const RasterizeParameters& parameters, const CoverageRasterizer& rasterizer,
+                     const FeatureHit& hit, const StrokeWidths& widths,
+                     std::vector<float>& coverage, std::vector<float>& strokes) {
+    const Feature& feature = *hit.feature;
+    const std::size_t texels = coverage.size();
+    switch (feature.kind) {
+        case GeometryKind::Polygon:
+            if (parameters.fill) {
+                rasterizer.fillPolygon(feature.parts, hit.longitudeShift, coverage);
+            }
+            if (widths.outline > 0.0) {
+                strokes.assign(texels, 0.0f);
+                rasterizer.strokeLines(feature.parts, hit.longitudeShift, widths.outline, strokes);
+                for (std::size_t i = 0; i < texels; ++i) {
+                    coverage[i] = std::max(coverage[i], strokes[i]);
+                }
+            }
+            break;
+        case GeometryKind::Line:
+            rasterizer.strokeLines(feature.parts, hit.longitudeShift, widths.line, coverage);
+            break;
+        case GeometryKind::Point:
+            for (const glm::dvec2& p : feature.parts.front()) {
+                rasterizer.disc(p, hit.longitudeShift, parameters.pointRadius, coverage);
+            }
+            break;
+    }
+}
+
+// Every feature near the tile, in file order. The window reaches out by the widest
+// stroke so outlines of neighbours show.
+Status drawFeatures(const RasterizeParameters& parameters, const FeatureSource& features,
+                    const std::string& sourceName, const TileKey& key, const TileFormat& format,
+                    const CoverageRasterizer& rasterizer, Canvas& canvas) {
+    Result<std::shared_ptr<const FeatureCollection>> loaded = features.collection();
+    if (!loaded) {
+        return loaded.error();
+    }
+    const FeatureCollection& collection = *loaded.value();
+    const std::string file = features.file().string();
+    std::optional<std::size_t> colorField;
+    if (!parameters.colorAttribute.empty()) {
+        colorField = collection.field(parameters.colorAttribute);
+        if (!colorField) {
+            return Error{file + ": no attribute '" + parameters.colorAttribute +
+                         "' (for color_attribute of source '" + sourceName + "')"};
+        }
+    }
+    const StrokeWidths widths = strokeWidths(parameters, rasterizer);
+    const glm::dvec2 metres = rasterizer.metresPerTexel(0.5 * rasterizer.width());
+    const double reach = std::max({widths.outline, widths.line, 2.0 * parameters.pointRadius}) /
+                             std::min(metres.x, metres.y) +
+                         format.border + 1.0;
+    const double dx = reach * (key.east() - key.west()) / format.size;
+    const double dy = reach * (key.north() - key.south()) / format.size;
+    const GeographicBounds window{key.west() - dx, key.south() - dy, key.east() + dx,
+                                  key.north() + dy};
+    std::vector<float> coverage, strokes;
+    for (const FeatureHit& hit : collection.query(window)) {
+        Result<glm::vec3> c = featureColour(parameters, *hit.feature, colorField, file);
+        if (!c) {
+            return c.error();
+        }
+        coverage.assign(canvas.texels(), 0.0f);
+        featureCoverage(parameters, rasterizer, hit, widths, coverage, strokes);
+        canvas.composite(coverage, *c);
+    }
+    return Status::success();
+}
+
+// Instances near the tile as discs of point_radius × scale, colour × tint.
+Status drawInstances(const RasterizeParameters& parameters, const PlantsSource& instances,
+                     const TileKey& key, const TileFormat& format,
+                     const CoverageRasterizer& rasterizer, TileProvider& provider, Canvas& canvas) {
+    const glm::dvec2 metres = rasterizer.metresPerTexel(0.5 * rasterizer.width());
+    const double margin =
+        2.0 * parameters.pointRadius + (format.border + 1) * std::max(metres.x, metres.y);
+    Result<std::vector<PlantInstance>> near = instances.instancesNear(key, margin, provider);
+    if (!near) {
+        return near.error();
+    }
+    for (const PlantInstance& instance : near.value()) {
+        const glm::vec3 c = parameters.color * instance.tint;
+        rasterizer.disc(
+            {instance.longitude, instance.latitude}, 0.0, parameters.pointRadius * instance.scale,
+            [&](std::size_t i, float coverageOfTexel) { canvas.add(i, coverageOfTexel, c); });
+    }
+    return Status::success();
+}
+
+}  // namespace
+
 Result<TilePointer> RasterizeSource::produce(const TileKey& key, TileProvider& provider) const {
     const TileFormat& format = provider.format();
     const CoverageRasterizer rasterizer(key, format.size, format.border);
-    const int w = rasterizer.width();
-    const std::size_t texels = std::size_t(w) * w;
-    // Premultiplied accumulation: colour x alpha and alpha.
-    std::vector<glm::vec3> colour(parameters_.image ? texels : 0, glm::vec3(0.0f));
-    std::vector<float> alpha(texels, 0.0f);
-    auto composite = [&](const std::vector<float>& coverage, const glm::vec3& c) {
-        for (std::size_t i = 0; i < texels; ++i) {
-            const float a = coverage[i] * static_cast<float>(parameters_.opacity);
-            if (a <= 0.0f) {
-                continue;
-            }
-            if (parameters_.image) {
-                colour[i] = c * a + colour[i] * (1.0f - a);
-            }
-            alpha[i] = a + alpha[i] * (1.0f - a);
-        }
-    };
-    std::vector<float> coverage, strokes;
-    const double minimumWidth = parameters_.minimumTexels * rasterizer.metresPerTexel(0.5 * w).y;
-    const double outlineWidth =
-        parameters_.outline > 0.0 ? std::max(parameters_.outline, minimumWidth) : 0.0;
-    const double lineWidth =
-        parameters_.lineWidth > 0.0 ? std::max(parameters_.lineWidth, minimumWidth) : 0.0;
+    Canvas canvas(rasterizer.width(), parameters_.image, parameters_.opacity);
     if (features_ != nullptr) {
-        Result<std::shared_ptr<const FeatureCollection>> loaded = features_->collection();
-        if (!loaded) {
-            return loaded.error();
-        }
-        const FeatureCollection& collection = *loaded.value();
-        std::optional<std::size_t> colorField;
-        if (!parameters_.colorAttribute.empty()) {
-            colorField = collection.field(parameters_.colorAttribute);
-            if (!colorField) {
-                return Error{features_->file().string() + ": no attribute '" +
-                             parameters_.colorAttribute + "' (for color_attribute of source '" +
-                             name() + "')"};
-            }
-        }
-        // The window reaches out by the widest stroke so outlines of neighbours show.
-        const glm::dvec2 metres = rasterizer.metresPerTexel(0.5 * w);
-        const double reach = std::max({outlineWidth, lineWidth, 2.0 * parameters_.pointRadius}) /
-                                 std::min(metres.x, metres.y) +
-                             format.border + 1.0;
-        const double dx = reach * (key.east() - key.west()) / format.size;
-        const double dy = reach * (key.north() - key.south()) / format.size;
-        const GeographicBounds window{key.west() - dx, key.south() - dy, key.east() + dx,
-                                      key.north() + dy};
-        for (const FeatureHit& hit : collection.query(window)) {
-            const Feature& feature = *hit.feature;
-            glm::vec3 c = parameters_.color;
-            if (colorField) {
-                const std::string& value = feature.attributes[*colorField];
-                const std::string where = features_->file().string() + ": feature " +
-                                          std::to_string(feature.id) + ": attribute '" +
-                                          parameters_.colorAttribute + "'";
-                if (!parameters_.colors.empty()) {
-                    auto it = std::find_if(parameters_.colors.begin(), parameters_.colors.end(),
-                                           [&](const auto& entry) { return entry.first == value; });
-                    if (it == parameters_.colors.end()) {
-                        return Error{where + ": value '" + value + "' is not in colors"};
-                    }
-                    c = it->second;
-                } else if (std::optional<glm::vec3> parsed = parseHexColor(value)) {
-                    c = *parsed;
-                } else {
-                    return Error{where + ": '" + value + "' is not a hex colour such as #1a8c3f"};
-                }
-            }
-            coverage.assign(texels, 0.0f);
-            switch (feature.kind) {
-                case GeometryKind::Polygon:
-                    if (parameters_.fill) {
-                        rasterizer.fillPolygon(feature.parts, hit.longitudeShift, coverage);
-                    }
-                    if (outlineWidth > 0.0) {
-                        strokes.assign(texels, 0.0f);
-                        rasterizer.strokeLines(feature.parts, hit.longitudeShift, outlineWidth,
-                                               strokes);
-                        for (std::size_t i = 0; i < texels; ++i) {
-                            coverage[i] = std::max(coverage[i], strokes[i]);
-                        }
-                    }
-                    break;
-                case GeometryKind::Line:
-                    rasterizer.strokeLines(feature.parts, hit.longitudeShift, lineWidth, coverage);
-                    break;
-                case GeometryKind::Point:
-                    for (const glm::dvec2& p : feature.parts.front()) {
-                        rasterizer.disc(p, hit.longitudeShift, parameters_.pointRadius, coverage);
-                    }
-                    break;
-            }
-            composite(coverage, c);
+        if (Status drawn =
+                drawFeatures(parameters_, *features_, name(), key, format, rasterizer, canvas);
+            !drawn) {
+            return drawn.error();
         }
     } else if (key.level >= instances_->minimumLevel()) {
-        const glm::dvec2 metres = rasterizer.metresPerTexel(0.5 * w);
-        const double margin =
-            2.0 * parameters_.pointRadius + (format.border + 1) * std::max(metres.x, metres.y);
-        Result<std::vector<PlantInstance>> near = instances_->instancesNear(key, margin, provider);
-        if (!near) {
-            return near.error();
-        }
-        for (const PlantInstance& instance : near.value()) {
-            const glm::vec3 c = parameters_.color * instance.tint;
-            rasterizer.disc({instance.longitude, instance.latitude}, 0.0,
-                            parameters_.pointRadius * instance.scale,
-                            [&](std::size_t i, float coverageOfTexel) {
-                                const float a =
-                                    coverageOfTexel * static_cast<float>(parameters_.opacity);
-                                if (parameters_.image) {
-                                    colour[i] = c * a + colour[i] * (1.0f - a);
-                                }
-                                alpha[i] = a + alpha[i] * (1.0f - a);
-                            });
+        if (Status drawn =
+                drawInstances(parameters_, *instances_, key, format, rasterizer, provider, canvas);
+            !drawn) {
+            return drawn.error();
         }
     }
-    auto tile =
-        std::make_shared<ImageTile>(key, format.size, format.border, parameters_.image ? 4 : 1);
-    for (int gy = 0; gy < w; ++gy) {
-        for (int gx = 0; gx < w; ++gx) {
-            const std::size_t i = std::size_t(gy) * w + gx;
-            const int ix = gx - format.border, iy = gy - format.border;
-            if (parameters_.image) {
-                const glm::vec3 straight = alpha[i] > 0.0f ? colour[i] / alpha[i] : glm::vec3(0.0f);
-                for (int c = 0; c < 3; ++c) {
-                    tile->at(ix, iy, c) = straight[c];
-                }
-                tile->at(ix, iy, 3) = alpha[i];
-            } else {
-                tile->at(ix, iy, 0) = alpha[i];
-            }
-        }
-    }
-    return TilePointer(std::move(tile));
+    return canvas.tile(key, format, rasterizer.width());
 }
 
 Result<std::unique_ptr<Source>> RasterizeSource::create(const SourceBuildContext& context) {

@@ -14,7 +14,111 @@
 namespace sylva {
 namespace {
 
-using Resolve = std::function<Result<const Source*>(const BlockReader&, std::string_view, bool)>;
+// Builds the sources of a model depth-first: a source's inputs are created (and their
+// ports checked against the schema) before it; a source met again while it is being
+// created closes a dependency cycle.
+class GraphBuilder {
+public:
+    // `sources`: the graph's own list, which `graph.find` searches.
+    GraphBuilder(const ProjectModel& model, const SourceGraph& graph,
+                 std::vector<std::unique_ptr<Source>>& sources)
+        : schema_(SchemaRegistry::builtin()),
+          graph_(graph),
+          sources_(sources),
+          projectFolder_(model.file.has_parent_path() ? model.file.parent_path()
+                                                      : std::filesystem::path(".")) {
+        for (const Block& block : model.sources) {
+            blocks_.emplace(block.name, &block);
+        }
+    }
+
+    Result<const Source*> create(const Block& block) {
+        if (const Source* existing = graph_.find(block.name)) {
+            return existing;
+        }
+        const KindSchema* kind = schema_.find("source", block.kind);
+        BlockReader reader(block, kind);
+        if (kind == nullptr) {
+            return Error{block.location.toString() + ": source '" + block.name +
+                         "': unknown source kind '" + block.kind + "'"};
+        }
+        const SourceCreator creator = findSourceCreator(block.kind);
+        if (creator == nullptr) {
+            return Error{block.location.toString() + ": source '" + block.name + "': kind '" +
+                         block.kind + "' has no implementation in this build"};
+        }
+        visiting_.insert(block.name);
+        const InputResolver input = [&](std::string_view attribute, bool required) {
+            return resolve(reader, attribute, required);
+        };
+        const InputListResolver inputList =
+            [&](std::string_view attribute) -> Result<std::vector<const Source*>> {
+            std::vector<const Source*> sources;
+            for (const std::string& name : reader.references(attribute)) {
+                Result<const Source*> source = resolveNamed(reader, attribute, name);
+                if (!source) {
+                    return source.error();
+                }
+                sources.push_back(source.value());
+            }
+            return sources;
+        };
+        const SourceBuildContext context{block, reader, input, projectFolder_, &inputList};
+        Result<std::unique_ptr<Source>> made = creator(context);
+        visiting_.erase(block.name);
+        if (!made) {
+            return made.error();
+        }
+        sources_.push_back(std::move(made.value()));
+        return sources_.back().get();
+    }
+
+private:
+    Result<const Source*> resolve(const BlockReader& reader, std::string_view attribute,
+                                  bool required) {
+        std::optional<std::string> target = reader.reference(attribute);
+        if (!target) {
+            if (required) {
+                return Error{reader.where(attribute) + "missing input '" + std::string(attribute) +
+                             "'"};
+            }
+            return static_cast<const Source*>(nullptr);
+        }
+        return resolveNamed(reader, attribute, *target);
+    }
+
+    Result<const Source*> resolveNamed(const BlockReader& reader, std::string_view attribute,
+                                       const std::string& target) {
+        auto it = blocks_.find(target);
+        if (it == blocks_.end()) {
+            return Error{reader.where(attribute) + "unknown source '" + target + "'"};
+        }
+        if (visiting_.count(target) != 0) {
+            return Error{reader.where(attribute) + "dependency cycle through source '" + target +
+                         "'"};
+        }
+        Result<const Source*> input = create(*it->second);
+        if (!input) {
+            return input;
+        }
+        const KindSchema* kind = schema_.find("source", reader.block().kind);
+        const AttributeSchema* port = kind ? kind->find(attribute) : nullptr;
+        if (port != nullptr && port->port != PortType::None &&
+            input.value()->output() != port->port) {
+            return Error{reader.where(attribute) + "'" + std::string(attribute) + "' expects " +
+                         portTypeName(port->port) + ", but source '" + target + "' gives " +
+                         portTypeName(input.value()->output())};
+        }
+        return input;
+    }
+
+    const SchemaRegistry& schema_;
+    const SourceGraph& graph_;
+    std::vector<std::unique_ptr<Source>>& sources_;
+    const std::filesystem::path projectFolder_;
+    std::map<std::string, const Block*, std::less<>> blocks_;
+    std::set<std::string, std::less<>> visiting_;
+};
 
 }  // namespace
 
@@ -32,100 +136,10 @@ const Source* SourceGraph::find(std::string_view name) const {
 }
 
 Result<SourceGraph> SourceGraph::build(const ProjectModel& model) {
-    const SchemaRegistry& schema = SchemaRegistry::builtin();
     SourceGraph graph;
-    std::map<std::string, const Block*, std::less<>> blocks;
+    GraphBuilder builder(model, graph, graph.sources_);
     for (const Block& block : model.sources) {
-        blocks.emplace(block.name, &block);
-    }
-    std::set<std::string, std::less<>> visiting;
-    const std::filesystem::path projectFolder =
-        model.file.has_parent_path() ? model.file.parent_path() : std::filesystem::path(".");
-    std::function<Result<const Source*>(const Block&)> create;
-
-    std::function<Result<const Source*>(const BlockReader&, std::string_view, const std::string&)>
-        resolveNamed;
-    Resolve resolve = [&](const BlockReader& reader, std::string_view attribute,
-                          bool required) -> Result<const Source*> {
-        std::optional<std::string> target = reader.reference(attribute);
-        if (!target) {
-            if (required) {
-                return Error{reader.where(attribute) + "missing input '" + std::string(attribute) +
-                             "'"};
-            }
-            return static_cast<const Source*>(nullptr);
-        }
-        return resolveNamed(reader, attribute, *target);
-    };
-    resolveNamed = [&](const BlockReader& reader, std::string_view attribute,
-                       const std::string& targetName) -> Result<const Source*> {
-        const std::string* target = &targetName;
-        auto it = blocks.find(*target);
-        if (it == blocks.end()) {
-            return Error{reader.where(attribute) + "unknown source '" + *target + "'"};
-        }
-        if (visiting.count(*target) != 0) {
-            return Error{reader.where(attribute) + "dependency cycle through source '" + *target +
-                         "'"};
-        }
-        Result<const Source*> input = create(*it->second);
-        if (!input) {
-            return input;
-        }
-        const KindSchema* kind = schema.find("source", reader.block().kind);
-        const AttributeSchema* port = kind ? kind->find(attribute) : nullptr;
-        if (port != nullptr && port->port != PortType::None &&
-            input.value()->output() != port->port) {
-            return Error{reader.where(attribute) + "'" + std::string(attribute) + "' expects " +
-                         portTypeName(port->port) + ", but source '" + *target + "' gives " +
-                         portTypeName(input.value()->output())};
-        }
-        return input;
-    };
-
-    create = [&](const Block& block) -> Result<const Source*> {
-        if (const Source* existing = graph.find(block.name)) {
-            return existing;
-        }
-        const KindSchema* kind = schema.find("source", block.kind);
-        BlockReader reader(block, kind);
-        if (kind == nullptr) {
-            return Error{block.location.toString() + ": source '" + block.name +
-                         "': unknown source kind '" + block.kind + "'"};
-        }
-        const SourceCreator creator = findSourceCreator(block.kind);
-        if (creator == nullptr) {
-            return Error{block.location.toString() + ": source '" + block.name + "': kind '" +
-                         block.kind + "' has no implementation in this build"};
-        }
-        visiting.insert(block.name);
-        const InputResolver input = [&](std::string_view attribute, bool required) {
-            return resolve(reader, attribute, required);
-        };
-        const InputListResolver inputList =
-            [&](std::string_view attribute) -> Result<std::vector<const Source*>> {
-            std::vector<const Source*> sources;
-            for (const std::string& name : reader.references(attribute)) {
-                Result<const Source*> source = resolveNamed(reader, attribute, name);
-                if (!source) {
-                    return source.error();
-                }
-                sources.push_back(source.value());
-            }
-            return sources;
-        };
-        const SourceBuildContext context{block, reader, input, projectFolder, &inputList};
-        Result<std::unique_ptr<Source>> made = creator(context);
-        visiting.erase(block.name);
-        if (!made) {
-            return made.error();
-        }
-        graph.sources_.push_back(std::move(made.value()));
-        return graph.sources_.back().get();
-    };
-
-    for (const Block& block : model.sources) {
-        Result<const Source*> made = create(block);
+        Result<const Source*> made = builder.create(block);
         if (!made) {
             return made.error();
         }

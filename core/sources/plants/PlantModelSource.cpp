@@ -11,6 +11,7 @@
 #include "sylva/core/plantlod/PlantGenerator.h"
 #include "sylva/core/plantlod/PlantImporter.h"
 #include "sylva/core/plantlod/PlantLodBuilder.h"
+#include "sylva/core/plantlod/PlantSidecar.h"
 #include "sylva/core/plantlod/PlodFile.h"
 
 namespace sylva {
@@ -45,12 +46,6 @@ std::string hex(std::uint64_t value) {
     return text;
 }
 
-std::filesystem::path sidecarOf(const std::filesystem::path& model) {
-    std::filesystem::path sidecar = model;
-    sidecar.replace_extension(".plant.json");
-    return sidecar;
-}
-
 }  // namespace
 
 PlantModelSource::PlantModelSource(std::string name, PlantModelParameters parameters,
@@ -66,7 +61,7 @@ PlantModelSource::PlantModelSource(std::string name, PlantModelParameters parame
     if (!parameters_.file.empty()) {
         addFile(hash, parameters_.file);
         std::error_code error;
-        const std::filesystem::path sidecar = sidecarOf(parameters_.file);
+        const std::filesystem::path sidecar = PlantSidecar::pathFor(parameters_.file);
         if (std::filesystem::exists(sidecar, error)) {
             addFile(hash, sidecar);
         }

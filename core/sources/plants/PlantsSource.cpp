@@ -100,6 +100,20 @@ bool insidePolygon(const Feature& feature, double shift, double longitude, doubl
     return winding != 0;
 }
 
+// Whether any polygon holds the point (1) or none (0).
+double polygonDensity(const std::vector<FeatureHit>& polygons, double longitudeUnwrapped,
+                      double latitude) {
+    for (const FeatureHit& hit : polygons) {
+        const GeographicBounds& b = hit.feature->bounds;
+        const double x = longitudeUnwrapped - hit.longitudeShift;
+        if (x >= b.west && x <= b.east && latitude >= b.south && latitude <= b.north &&
+            insidePolygon(*hit.feature, 0.0, x, latitude)) {
+            return 1.0;
+        }
+    }
+    return 0.0;
+}
+
 std::string decimal(double value) {
     char text[32];
     std::snprintf(text, sizeof text, "%.3g", value);
@@ -120,6 +134,72 @@ std::optional<double> parseNumber(const std::string& text) {
 struct PlantsSource::Window {
     GeographicBounds bounds;       // unwrapped longitudes allowed
     std::optional<TileKey> owner;  // keep only instances owned by this tile
+
+    // Whether an instance at this (unwrapped) position belongs to the window. `like`
+    // gives the level of the owner tiles.
+    bool keeps(const TileKey& like, double longitudeUnwrapped, double latitude) const {
+        if (owner) {
+            // tileOf wraps the longitude, so ownership does not depend on the shift.
+            return tileOf(like, longitudeUnwrapped, latitude) == *owner;
+        }
+        return longitudeUnwrapped >= bounds.west && longitudeUnwrapped < bounds.east &&
+               latitude >= bounds.south && latitude < bounds.north;
+    }
+};
+
+// One row of the global grid: its cells and the margins that keep the spacing.
+struct PlantsSource::RowCells {
+    int row = 0;
+    double south = 0.0;      // radians
+    std::int64_t count = 1;  // cells around the parallel
+    double width = 0.0;      // radians of longitude
+    double marginLongitude = 0.0, marginLatitude = 0.0;
+    double area = 0.0;  // m² of one cell
+};
+
+// The input tiles at the sample level (inputs are sampled at one fixed level, whatever
+// level is asked for), each fetched once per generate().
+class PlantsSource::InputTiles {
+public:
+    struct Inputs {
+        TilePointer elevation, density;
+    };
+
+    InputTiles(const Source& elevation, const Source* density, int sampleLevel,
+               TileProvider& provider)
+        : elevation_(elevation), density_(density), provider_(provider) {
+        sampleKey_.level = sampleLevel;
+    }
+
+    // The tiles holding a longitude/latitude (radians).
+    Result<const Inputs*> at(double longitude, double latitude) {
+        const TileKey owner = tileOf(sampleKey_, longitude, latitude);
+        auto it = tiles_.find(owner);
+        if (it != tiles_.end()) {
+            return &it->second;
+        }
+        Inputs inputs;
+        Result<TilePointer> elevation = provider_.tile(elevation_, owner);
+        if (!elevation) {
+            return elevation.error();
+        }
+        inputs.elevation = elevation.value();
+        if (density_ != nullptr) {
+            Result<TilePointer> density = provider_.tile(*density_, owner);
+            if (!density) {
+                return density.error();
+            }
+            inputs.density = density.value();
+        }
+        return &tiles_.emplace(owner, std::move(inputs)).first->second;
+    }
+
+private:
+    const Source& elevation_;
+    const Source* density_;
+    TileProvider& provider_;
+    TileKey sampleKey_;
+    std::map<TileKey, Inputs> tiles_;
 };
 
 PlantsSource::PlantsSource(std::string name, const Source* elevation, const Source* density,
@@ -233,161 +313,22 @@ int PlantsSource::minimumLevel() const {
 Result<std::vector<PlantInstance>> PlantsSource::generate(const TileKey& key, const Window& window,
                                                           TileProvider& provider) const {
     std::vector<PlantInstance> out;
-    struct Inputs {
-        TilePointer elevation, density;
-    };
-    std::map<TileKey, Inputs> tiles;
-    auto inputsAt = [&](const TileKey& owner) -> Result<const Inputs*> {
-        auto it = tiles.find(owner);
-        if (it != tiles.end()) {
-            return &it->second;
-        }
-        Inputs inputs;
-        Result<TilePointer> elevation = provider.tile(*elevation_, owner);
-        if (!elevation) {
-            return elevation.error();
-        }
-        inputs.elevation = elevation.value();
-        if (density_ != nullptr) {
-            Result<TilePointer> density = provider.tile(*density_, owner);
-            if (!density) {
-                return density.error();
-            }
-            inputs.density = density.value();
-        }
-        return &tiles.emplace(owner, std::move(inputs)).first->second;
-    };
-    // Inputs are sampled at one fixed level, whatever level is asked for.
-    TileKey sampleKey;
-    sampleKey.level = sampleLevel_;
-    auto keep = [&](double longitudeUnwrapped, double latitude) {
-        if (window.owner) {
-            // tileOf wraps the longitude, so ownership does not depend on the shift.
-            return tileOf(key, longitudeUnwrapped, latitude) == *window.owner;
-        }
-        return longitudeUnwrapped >= window.bounds.west &&
-               longitudeUnwrapped < window.bounds.east && latitude >= window.bounds.south &&
-               latitude < window.bounds.north;
-    };
-
-    std::vector<FeatureHit> hits;
+    InputTiles inputs(*elevation_, density_, sampleLevel_, provider);
+    std::vector<FeatureHit> polygons;
     if (features_ != nullptr) {
         Result<std::shared_ptr<const FeatureCollection>> collection = features_->collection();
         if (!collection) {
             return collection.error();
         }
-        hits = collection.value()->query(window.bounds);
-        const FeatureCollection& features = *collection.value();
-        const std::optional<std::size_t> speciesField =
-            parameters_.speciesAttribute.empty() ? std::nullopt
-                                                 : features.field(parameters_.speciesAttribute);
-        const std::optional<std::size_t> scaleField =
-            parameters_.scaleAttribute.empty() ? std::nullopt
-                                               : features.field(parameters_.scaleAttribute);
-        const std::optional<std::size_t> rotationField =
-            parameters_.rotationAttribute.empty() ? std::nullopt
-                                                  : features.field(parameters_.rotationAttribute);
-        const std::string where = features_->file().string() + ": ";
-        for (const auto& [attribute, field] :
-             {std::pair{&parameters_.speciesAttribute, speciesField},
-              std::pair{&parameters_.scaleAttribute, scaleField},
-              std::pair{&parameters_.rotationAttribute, rotationField}}) {
-            if (!attribute->empty() && !field) {
-                return Error{where + "no attribute '" + *attribute + "'"};
-            }
+        const std::vector<FeatureHit> hits = collection.value()->query(window.bounds);
+        if (Status placed = placePoints(hits, *collection.value(), key, window, inputs, out);
+            !placed) {
+            return placed.error();
         }
         for (const FeatureHit& hit : hits) {
-            const Feature& feature = *hit.feature;
-            if (feature.kind == GeometryKind::Line) {
-                return Error{where + "feature " + std::to_string(feature.id) +
-                             " is a line; plants takes points (instances) and polygons (areas to "
-                             "scatter over)"};
+            if (hit.feature->kind == GeometryKind::Polygon) {
+                polygons.push_back(hit);
             }
-            if (feature.kind != GeometryKind::Point) {
-                continue;
-            }
-            for (std::size_t index = 0; index < feature.parts.front().size(); ++index) {
-                const glm::dvec2 p = feature.parts.front()[index];
-                const double longitude = p.x + hit.longitudeShift;
-                if (!keep(longitude, p.y)) {
-                    continue;
-                }
-                CellRandom random(cellSeed(parameters_.seed, feature.id, std::int64_t(index), 2));
-                PlantInstance instance;
-                instance.longitude = p.x;
-                instance.latitude = p.y;
-                if (speciesField) {
-                    const std::string& value = feature.attributes[*speciesField];
-                    std::string species = value;
-                    if (!parameters_.speciesMap.empty()) {
-                        auto it = std::find_if(
-                            parameters_.speciesMap.begin(), parameters_.speciesMap.end(),
-                            [&](const auto& entry) { return entry.first == value; });
-                        if (it == parameters_.speciesMap.end()) {
-                            return Error{where + "feature " + std::to_string(feature.id) +
-                                         ": species '" + value + "' (attribute '" +
-                                         parameters_.speciesAttribute + "') is not in species_map"};
-                        }
-                        species = it->second;
-                    }
-                    auto found = std::find(speciesNames_.begin(), speciesNames_.end(), species);
-                    if (found == speciesNames_.end()) {
-                        return Error{where + "feature " + std::to_string(feature.id) +
-                                     ": unknown species '" + species + "' (attribute '" +
-                                     parameters_.speciesAttribute + "')"};
-                    }
-                    instance.species = static_cast<std::uint32_t>(found - speciesNames_.begin());
-                    random.uniform();
-                } else {
-                    const double u = random.uniform();
-                    instance.species = static_cast<std::uint32_t>(
-                        std::lower_bound(speciesCumulative_.begin(), speciesCumulative_.end(), u) -
-                        speciesCumulative_.begin());
-                }
-                const double uScale = random.uniform(), uRotation = random.uniform(),
-                             uTint = random.uniform();
-                instance.scale = static_cast<float>(
-                    parameters_.scaleMinimum +
-                    uScale * (parameters_.scaleMaximum - parameters_.scaleMinimum));
-                if (scaleField) {
-                    const std::optional<double> v = parseNumber(feature.attributes[*scaleField]);
-                    if (!v) {
-                        return Error{where + "feature " + std::to_string(feature.id) +
-                                     ": attribute '" + parameters_.scaleAttribute +
-                                     "' is not a number: '" + feature.attributes[*scaleField] +
-                                     "'"};
-                    }
-                    instance.scale = static_cast<float>(*v);
-                }
-                instance.rotation = static_cast<float>(uRotation * kTwoPi);
-                if (rotationField) {
-                    const std::optional<double> v = parseNumber(feature.attributes[*rotationField]);
-                    if (!v) {
-                        return Error{where + "feature " + std::to_string(feature.id) +
-                                     ": attribute '" + parameters_.rotationAttribute +
-                                     "' is not a number: '" + feature.attributes[*rotationField] +
-                                     "'"};
-                    }
-                    instance.rotation = static_cast<float>(*v * kPi / 180.0);
-                }
-                instance.tint = glm::vec3(
-                    static_cast<float>(1.0 + (2.0 * uTint - 1.0) * parameters_.tintVariation));
-                Result<const Inputs*> inputs = inputsAt(tileOf(sampleKey, longitude, p.y));
-                if (!inputs) {
-                    return inputs.error();
-                }
-                instance.height =
-                    sample(*inputs.value()->elevation, instance.longitude, instance.latitude);
-                out.push_back(instance);
-            }
-        }
-    }
-
-    // Scattering over the density mask and/or the polygons.
-    std::vector<FeatureHit> polygons;
-    for (const FeatureHit& hit : hits) {
-        if (hit.feature->kind == GeometryKind::Polygon) {
-            polygons.push_back(hit);
         }
     }
     if (density_ == nullptr && polygons.empty()) {
@@ -396,133 +337,313 @@ Result<std::vector<PlantInstance>> PlantsSource::generate(const TileKey& key, co
     if (speciesCumulative_.empty()) {
         return Error{"source '" + name() + "': scattering needs `species` (name = share)"};
     }
-    const double half = 0.5 * parameters_.spacing;
-    const double marginLatitude = half / kEquatorMeridional;
+    if (Status scattered = scatter(polygons, key, window, inputs, out); !scattered) {
+        return scattered.error();
+    }
+    return out;
+}
+
+// ---------------------------------------------------------------------------- points
+
+// The attributes of point features the parameters name (checked to exist).
+struct PlantsSource::PointFields {
+    std::optional<std::size_t> species, scale, rotation;
+};
+
+Result<PlantsSource::PointFields> PlantsSource::pointFields(
+    const FeatureCollection& features) const {
+    PointFields fields;
+    const auto field = [&](const std::string& attribute) {
+        return attribute.empty() ? std::nullopt : features.field(attribute);
+    };
+    fields.species = field(parameters_.speciesAttribute);
+    fields.scale = field(parameters_.scaleAttribute);
+    fields.rotation = field(parameters_.rotationAttribute);
+    for (const auto& [attribute, found] :
+         {std::pair{&parameters_.speciesAttribute, fields.species},
+          std::pair{&parameters_.scaleAttribute, fields.scale},
+          std::pair{&parameters_.rotationAttribute, fields.rotation}}) {
+        if (!attribute->empty() && !found) {
+            return Error{features_->file().string() + ": no attribute '" + *attribute + "'"};
+        }
+    }
+    return fields;
+}
+
+Status PlantsSource::placePoints(const std::vector<FeatureHit>& hits,
+                                 const FeatureCollection& features, const TileKey& key,
+                                 const Window& window, InputTiles& inputs,
+                                 std::vector<PlantInstance>& out) const {
+    Result<PointFields> fields = pointFields(features);
+    if (!fields) {
+        return fields.error();
+    }
+    const std::string where = features_->file().string() + ": ";
+    for (const FeatureHit& hit : hits) {
+        const Feature& feature = *hit.feature;
+        if (feature.kind == GeometryKind::Line) {
+            return Error{where + "feature " + std::to_string(feature.id) +
+                         " is a line; plants takes points (instances) and polygons (areas to "
+                         "scatter over)"};
+        }
+        if (feature.kind != GeometryKind::Point) {
+            continue;
+        }
+        for (std::size_t index = 0; index < feature.parts.front().size(); ++index) {
+            const glm::dvec2 p = feature.parts.front()[index];
+            const double longitude = p.x + hit.longitudeShift;
+            if (!window.keeps(key, longitude, p.y)) {
+                continue;
+            }
+            Result<PlantInstance> instance = pointInstance(feature, index, *fields, where);
+            if (!instance) {
+                return instance.error();
+            }
+            Result<const InputTiles::Inputs*> tiles = inputs.at(longitude, p.y);
+            if (!tiles) {
+                return tiles.error();
+            }
+            instance->height =
+                sample(*tiles.value()->elevation, instance->longitude, instance->latitude);
+            out.push_back(*instance);
+        }
+    }
+    return Status::success();
+}
+
+// The species of a point: its attribute (through species_map) when one is named.
+Result<std::uint32_t> PlantsSource::pointSpecies(const Feature& feature, std::size_t field,
+                                                 const std::string& where) const {
+    const std::string& value = feature.attributes[field];
+    std::string species = value;
+    if (!parameters_.speciesMap.empty()) {
+        auto it = std::find_if(parameters_.speciesMap.begin(), parameters_.speciesMap.end(),
+                               [&](const auto& entry) { return entry.first == value; });
+        if (it == parameters_.speciesMap.end()) {
+            return Error{where + "feature " + std::to_string(feature.id) + ": species '" + value +
+                         "' (attribute '" + parameters_.speciesAttribute +
+                         "') is not in species_map"};
+        }
+        species = it->second;
+    }
+    auto found = std::find(speciesNames_.begin(), speciesNames_.end(), species);
+    if (found == speciesNames_.end()) {
+        return Error{where + "feature " + std::to_string(feature.id) + ": unknown species '" +
+                     species + "' (attribute '" + parameters_.speciesAttribute + "')"};
+    }
+    return static_cast<std::uint32_t>(found - speciesNames_.begin());
+}
+
+// A number attribute of a point, named `attribute` in messages.
+Result<double> PlantsSource::pointNumber(const Feature& feature, std::size_t field,
+                                         const std::string& attribute,
+                                         const std::string& where) const {
+    const std::optional<double> v = parseNumber(feature.attributes[field]);
+    if (!v) {
+        return Error{where + "feature " + std::to_string(feature.id) + ": attribute '" + attribute +
+                     "' is not a number: '" + feature.attributes[field] + "'"};
+    }
+    return *v;
+}
+
+// Point `index` of a feature as an instance (without its height): attributes where
+// named, otherwise the point's own random stream (seeded by feature and index).
+Result<PlantInstance> PlantsSource::pointInstance(const Feature& feature, std::size_t index,
+                                                  const PointFields& fields,
+                                                  const std::string& where) const {
+    const glm::dvec2 p = feature.parts.front()[index];
+    CellRandom random(cellSeed(parameters_.seed, feature.id, std::int64_t(index), 2));
+    PlantInstance instance;
+    instance.longitude = p.x;
+    instance.latitude = p.y;
+    if (fields.species) {
+        Result<std::uint32_t> species = pointSpecies(feature, *fields.species, where);
+        if (!species) {
+            return species.error();
+        }
+        instance.species = *species;
+        random.uniform();
+    } else {
+        const double u = random.uniform();
+        instance.species = static_cast<std::uint32_t>(
+            std::lower_bound(speciesCumulative_.begin(), speciesCumulative_.end(), u) -
+            speciesCumulative_.begin());
+    }
+    const double uScale = random.uniform(), uRotation = random.uniform(), uTint = random.uniform();
+    instance.scale = static_cast<float>(
+        parameters_.scaleMinimum + uScale * (parameters_.scaleMaximum - parameters_.scaleMinimum));
+    if (fields.scale) {
+        Result<double> v = pointNumber(feature, *fields.scale, parameters_.scaleAttribute, where);
+        if (!v) {
+            return v.error();
+        }
+        instance.scale = static_cast<float>(*v);
+    }
+    instance.rotation = static_cast<float>(uRotation * kTwoPi);
+    if (fields.rotation) {
+        Result<double> v =
+            pointNumber(feature, *fields.rotation, parameters_.rotationAttribute, where);
+        if (!v) {
+            return v.error();
+        }
+        instance.rotation = static_cast<float>(*v * kPi / 180.0);
+    }
+    instance.tint =
+        glm::vec3(static_cast<float>(1.0 + (2.0 * uTint - 1.0) * parameters_.tintVariation));
+    return instance;
+}
+
+// ---------------------------------------------------------------------------- scattering
+
+// Scattering over the density mask and/or the polygons: the rows of the global grid that
+// meet the window, after a check that the window is fine enough.
+Status PlantsSource::scatter(const std::vector<FeatureHit>& polygons, const TileKey& key,
+                             const Window& window, InputTiles& inputs,
+                             std::vector<PlantInstance>& out) const {
     const int rowFirst = std::clamp(
         static_cast<int>(std::floor((window.bounds.south + kPi / 2) / rowHeight_)), 0, rows_ - 1);
     const int rowLast = std::clamp(
         static_cast<int>(std::floor((window.bounds.north + kPi / 2) / rowHeight_)), 0, rows_ - 1);
-    {
-        const double equatorward =
-            std::min(std::abs(window.bounds.south), std::abs(window.bounds.north));
-        const double parallel =
-            Ellipsoid::primeVerticalRadius(equatorward) *
-            std::cos(window.bounds.south < 0 && window.bounds.north > 0 ? 0.0 : equatorward);
-        const double cells =
-            double(rowLast - rowFirst + 1) *
-            ((window.bounds.east - window.bounds.west) * parallel / cellSize_ + 2.0);
-        if (cells > kMaxCells) {
-            return Error{"source '" + name() + "': tile " + key.toString() +
-                         " is too coarse for plant instances (" +
-                         std::to_string(static_cast<long long>(cells)) + " cells); request level " +
-                         std::to_string(minimumLevel()) + " or finer"};
+    const double equatorward =
+        std::min(std::abs(window.bounds.south), std::abs(window.bounds.north));
+    const double parallel =
+        Ellipsoid::primeVerticalRadius(equatorward) *
+        std::cos(window.bounds.south < 0 && window.bounds.north > 0 ? 0.0 : equatorward);
+    const double cells = double(rowLast - rowFirst + 1) *
+                         ((window.bounds.east - window.bounds.west) * parallel / cellSize_ + 2.0);
+    if (cells > kMaxCells) {
+        return Error{"source '" + name() + "': tile " + key.toString() +
+                     " is too coarse for plant instances (" +
+                     std::to_string(static_cast<long long>(cells)) + " cells); request level " +
+                     std::to_string(minimumLevel()) + " or finer"};
+    }
+    for (int row = rowFirst; row <= rowLast; ++row) {
+        if (Status done = scatterRow(row, polygons, key, window, inputs, out); !done) {
+            return done;
         }
     }
-    const double densityScale = parameters_.perHectare / 1.0e4;
-    for (int row = rowFirst; row <= rowLast; ++row) {
-        const double south = -kPi / 2 + row * rowHeight_, north = south + rowHeight_;
-        const double poleward = std::abs(south) > std::abs(north) ? south : north;
-        if (std::abs(poleward) >= kPi / 2 - 1e-12) {
-            continue;  // a cell touching the pole has no width to keep spacing in
-        }
-        const double parallel = Ellipsoid::primeVerticalRadius(poleward) * std::cos(poleward);
-        const auto cellsInRow =
-            static_cast<std::int64_t>(std::max(1.0, std::floor(kTwoPi * parallel / cellSize_)));
-        const double cellWidth = kTwoPi / double(cellsInRow);
-        const double marginLongitude = half / parallel;
-        if (2.0 * marginLongitude >= cellWidth || 2.0 * marginLatitude >= rowHeight_) {
+    return Status::success();
+}
+
+// Longitude intervals of a row that may hold instances: the window, or (without a
+// density) the polygons' bounds in it, sorted.
+std::vector<std::pair<double, double>> PlantsSource::rowIntervals(
+    const std::vector<FeatureHit>& polygons, const Window& window, double south,
+    double north) const {
+    std::vector<std::pair<double, double>> intervals;
+    if (density_ != nullptr) {
+        intervals.emplace_back(window.bounds.west, window.bounds.east);
+        return intervals;
+    }
+    for (const FeatureHit& hit : polygons) {
+        const GeographicBounds& b = hit.feature->bounds;
+        if (b.south > north || b.north < south) {
             continue;
         }
-        const double cellArea = CoverageRasterizer::quadrangleArea(south, north, cellWidth);
-        // Longitude intervals that may hold instances: the window, or the polygons' bounds in it.
-        std::vector<std::pair<double, double>> intervals;
-        if (density_ == nullptr) {
-            for (const FeatureHit& hit : polygons) {
-                const GeographicBounds& b = hit.feature->bounds;
-                if (b.south > north || b.north < south) {
-                    continue;
-                }
-                const double west = std::max(b.west + hit.longitudeShift, window.bounds.west);
-                const double east = std::min(b.east + hit.longitudeShift, window.bounds.east);
-                if (west <= east) {
-                    intervals.emplace_back(west, east);
-                }
-            }
-            std::sort(intervals.begin(), intervals.end());
-        } else {
-            intervals.emplace_back(window.bounds.west, window.bounds.east);
-        }
-        std::int64_t next = std::numeric_limits<std::int64_t>::min();
-        for (const auto& [west, east] : intervals) {
-            const auto first =
-                std::max(next, static_cast<std::int64_t>(std::floor((west + kPi) / cellWidth)));
-            const auto last = static_cast<std::int64_t>(std::floor((east + kPi) / cellWidth));
-            for (std::int64_t cell = first; cell <= last; ++cell) {
-                const std::int64_t wrapped = ((cell % cellsInRow) + cellsInRow) % cellsInRow;
-                CellRandom random(cellSeed(parameters_.seed, row, wrapped, 1));
-                const double latitude =
-                    south + marginLatitude + random.uniform() * (rowHeight_ - 2 * marginLatitude);
-                // The position comes from the wrapped cell, so the same instance has the
-                // same bits whichever side of the antimeridian asks; the window test
-                // uses it shifted by whole turns.
-                const double longitude = -kPi + double(wrapped) * cellWidth + marginLongitude +
-                                         random.uniform() * (cellWidth - 2 * marginLongitude);
-                const double longitudeUnwrapped =
-                    longitude + kTwoPi * double((cell - wrapped) / cellsInRow);
-                const double accept = random.uniform();
-                if (!keep(longitudeUnwrapped, latitude)) {
-                    continue;
-                }
-                double density = 1.0;
-                if (!polygons.empty()) {
-                    density = 0.0;
-                    for (const FeatureHit& hit : polygons) {
-                        const GeographicBounds& b = hit.feature->bounds;
-                        const double x = longitudeUnwrapped - hit.longitudeShift;
-                        if (x >= b.west && x <= b.east && latitude >= b.south &&
-                            latitude <= b.north && insidePolygon(*hit.feature, 0.0, x, latitude)) {
-                            density = 1.0;
-                            break;
-                        }
-                    }
-                    if (density == 0.0) {
-                        continue;
-                    }
-                }
-                Result<const Inputs*> inputs = inputsAt(tileOf(sampleKey, longitude, latitude));
-                if (!inputs) {
-                    return inputs.error();
-                }
-                if (density_ != nullptr) {
-                    density *= std::clamp(sample(*inputs.value()->density, longitude, latitude),
-                                          0.0f, 1.0f);
-                }
-                if (accept >= density * densityScale * cellArea) {
-                    continue;
-                }
-                PlantInstance instance;
-                instance.longitude = longitude;
-                instance.latitude = latitude;
-                const double uSpecies = random.uniform();
-                instance.species = static_cast<std::uint32_t>(
-                    std::lower_bound(speciesCumulative_.begin(), speciesCumulative_.end(),
-                                     uSpecies) -
-                    speciesCumulative_.begin());
-                instance.species = std::min<std::uint32_t>(
-                    instance.species, std::uint32_t(speciesCumulative_.size() - 1));
-                instance.scale = static_cast<float>(
-                    parameters_.scaleMinimum +
-                    random.uniform() * (parameters_.scaleMaximum - parameters_.scaleMinimum));
-                instance.rotation = static_cast<float>(random.uniform() * kTwoPi);
-                instance.tint = glm::vec3(static_cast<float>(1.0 + (2.0 * random.uniform() - 1.0) *
-                                                                       parameters_.tintVariation));
-                instance.height = sample(*inputs.value()->elevation, longitude, latitude);
-                out.push_back(instance);
-            }
-            next = std::max(next, last + 1);
+        const double west = std::max(b.west + hit.longitudeShift, window.bounds.west);
+        const double east = std::min(b.east + hit.longitudeShift, window.bounds.east);
+        if (west <= east) {
+            intervals.emplace_back(west, east);
         }
     }
-    return out;
+    std::sort(intervals.begin(), intervals.end());
+    return intervals;
+}
+
+Status PlantsSource::scatterRow(int row, const std::vector<FeatureHit>& polygons,
+                                const TileKey& key, const Window& window, InputTiles& inputs,
+                                std::vector<PlantInstance>& out) const {
+    const double half = 0.5 * parameters_.spacing;
+    const double marginLatitude = half / kEquatorMeridional;
+    const double south = -kPi / 2 + row * rowHeight_, north = south + rowHeight_;
+    const double poleward = std::abs(south) > std::abs(north) ? south : north;
+    if (std::abs(poleward) >= kPi / 2 - 1e-12) {
+        return Status::success();  // a cell touching the pole has no width to keep spacing in
+    }
+    const double parallel = Ellipsoid::primeVerticalRadius(poleward) * std::cos(poleward);
+    RowCells cells;
+    cells.row = row;
+    cells.south = south;
+    cells.count =
+        static_cast<std::int64_t>(std::max(1.0, std::floor(kTwoPi * parallel / cellSize_)));
+    cells.width = kTwoPi / double(cells.count);
+    cells.marginLongitude = half / parallel;
+    cells.marginLatitude = marginLatitude;
+    if (2.0 * cells.marginLongitude >= cells.width || 2.0 * marginLatitude >= rowHeight_) {
+        return Status::success();
+    }
+    cells.area = CoverageRasterizer::quadrangleArea(south, north, cells.width);
+    std::int64_t next = std::numeric_limits<std::int64_t>::min();
+    for (const auto& [west, east] : rowIntervals(polygons, window, south, north)) {
+        const auto first =
+            std::max(next, static_cast<std::int64_t>(std::floor((west + kPi) / cells.width)));
+        const auto last = static_cast<std::int64_t>(std::floor((east + kPi) / cells.width));
+        for (std::int64_t cell = first; cell <= last; ++cell) {
+            if (Status done = scatterCell(cells, cell, polygons, key, window, inputs, out); !done) {
+                return done;
+            }
+        }
+        next = std::max(next, last + 1);
+    }
+    return Status::success();
+}
+
+// The candidate of one cell (`cell` unwrapped: it may lie a whole turn off), kept with
+// probability density × per_hectare × cell area.
+Status PlantsSource::scatterCell(const RowCells& cells, std::int64_t cell,
+                                 const std::vector<FeatureHit>& polygons, const TileKey& key,
+                                 const Window& window, InputTiles& inputs,
+                                 std::vector<PlantInstance>& out) const {
+    const std::int64_t wrapped = ((cell % cells.count) + cells.count) % cells.count;
+    CellRandom random(cellSeed(parameters_.seed, cells.row, wrapped, 1));
+    const double latitude = cells.south + cells.marginLatitude +
+                            random.uniform() * (rowHeight_ - 2 * cells.marginLatitude);
+    // The position comes from the wrapped cell, so the same instance has the same bits
+    // whichever side of the antimeridian asks; the window test uses it shifted by whole
+    // turns.
+    const double longitude = -kPi + double(wrapped) * cells.width + cells.marginLongitude +
+                             random.uniform() * (cells.width - 2 * cells.marginLongitude);
+    const double longitudeUnwrapped = longitude + kTwoPi * double((cell - wrapped) / cells.count);
+    const double accept = random.uniform();
+    if (!window.keeps(key, longitudeUnwrapped, latitude)) {
+        return Status::success();
+    }
+    double density = 1.0;
+    if (!polygons.empty()) {
+        density = polygonDensity(polygons, longitudeUnwrapped, latitude);
+        if (density == 0.0) {
+            return Status::success();
+        }
+    }
+    Result<const InputTiles::Inputs*> tiles = inputs.at(longitude, latitude);
+    if (!tiles) {
+        return tiles.error();
+    }
+    if (density_ != nullptr) {
+        density *= std::clamp(sample(*tiles.value()->density, longitude, latitude), 0.0f, 1.0f);
+    }
+    const double densityScale = parameters_.perHectare / 1.0e4;
+    if (accept >= density * densityScale * cells.area) {
+        return Status::success();
+    }
+    PlantInstance instance;
+    instance.longitude = longitude;
+    instance.latitude = latitude;
+    const double uSpecies = random.uniform();
+    instance.species = static_cast<std::uint32_t>(
+        std::lower_bound(speciesCumulative_.begin(), speciesCumulative_.end(), uSpecies) -
+        speciesCumulative_.begin());
+    instance.species =
+        std::min<std::uint32_t>(instance.species, std::uint32_t(speciesCumulative_.size() - 1));
+    instance.scale = static_cast<float>(parameters_.scaleMinimum +
+                                        random.uniform() *
+                                            (parameters_.scaleMaximum - parameters_.scaleMinimum));
+    instance.rotation = static_cast<float>(random.uniform() * kTwoPi);
+    instance.tint = glm::vec3(
+        static_cast<float>(1.0 + (2.0 * random.uniform() - 1.0) * parameters_.tintVariation));
+    instance.height = sample(*tiles.value()->elevation, longitude, latitude);
+    out.push_back(instance);
+    return Status::success();
 }
 
 Result<std::shared_ptr<const InstanceTile>> PlantsSource::instances(const TileKey& key,
@@ -557,29 +678,10 @@ Result<std::vector<PlantInstance>> PlantsSource::instancesNear(const TileKey& ke
     return generate(key, window, provider);
 }
 
-Result<std::unique_ptr<Source>> PlantsSource::create(const SourceBuildContext& context) {
-    const BlockReader& reader = context.reader;
-    Result<const Source*> elevation = context.input("elevation", true);
-    if (!elevation) {
-        return elevation.error();
-    }
-    if (elevation.value()->output() != PortType::Elevation) {
-        return Error{reader.where("elevation") + "'elevation' must be an elevation, but source '" +
-                     elevation.value()->name() + "' gives " +
-                     portTypeName(elevation.value()->output())};
-    }
-    Result<const Source*> density = context.input("density", false);
-    if (!density) {
-        return density.error();
-    }
-    Result<const Source*> features = context.input("features", false);
-    if (!features) {
-        return features.error();
-    }
-    const FeatureSource* featureSource = FeatureSource::from(features.value());
-    if (features.value() != nullptr && featureSource == nullptr) {
-        return Error{reader.where("features") + "'features' must be a features source"};
-    }
+namespace {
+
+// The block's attributes (defaults as the schema gives them).
+Result<PlantsParameters> readParameters(const BlockReader& reader) {
     PlantsParameters p;
     p.perHectare = reader.optionalNumber("per_hectare").value_or(100.0);
     p.spacing = reader.optionalNumber("spacing").value_or(0.0);
@@ -623,49 +725,86 @@ Result<std::unique_ptr<Source>> PlantsSource::create(const SourceBuildContext& c
     p.rotationAttribute = reader.string("rotation_attribute");
     p.tintVariation = reader.optionalNumber("tint_variation").value_or(0.1);
     p.seed = static_cast<std::uint64_t>(reader.optionalNumber("seed").value_or(1.0));
+    return p;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<Source>> PlantsSource::create(const SourceBuildContext& context) {
+    const BlockReader& reader = context.reader;
+    Result<const Source*> elevation = context.input("elevation", true);
+    if (!elevation) {
+        return elevation.error();
+    }
+    if (elevation.value()->output() != PortType::Elevation) {
+        return Error{reader.where("elevation") + "'elevation' must be an elevation, but source '" +
+                     elevation.value()->name() + "' gives " +
+                     portTypeName(elevation.value()->output())};
+    }
+    Result<const Source*> density = context.input("density", false);
+    if (!density) {
+        return density.error();
+    }
+    Result<const Source*> features = context.input("features", false);
+    if (!features) {
+        return features.error();
+    }
+    const FeatureSource* featureSource = FeatureSource::from(features.value());
+    if (features.value() != nullptr && featureSource == nullptr) {
+        return Error{reader.where("features") + "'features' must be a features source"};
+    }
+    Result<PlantsParameters> p = readParameters(reader);
+    if (!p) {
+        return p.error();
+    }
     Result<std::unique_ptr<PlantsSource>> made =
-        make(context.block.name, elevation.value(), density.value(), featureSource, std::move(p));
+        make(context.block.name, elevation.value(), density.value(), featureSource, std::move(*p));
     if (!made) {
         return Error{reader.where() + made.error().message};
     }
-    // Models: species name = model source name; every species needs one.
-    if (reader.value("models") != nullptr && context.inputList != nullptr) {
-        Result<std::vector<const Source*>> models = (*context.inputList)("models");
-        if (!models) {
-            return models.error();
-        }
-        std::vector<const PlantModelSource*> byName;
-        for (const Source* source : models.value()) {
-            const PlantModelSource* model = PlantModelSource::from(source);
-            if (model == nullptr) {
-                return Error{reader.where("models") +
-                             "'models' expects plant_model sources, but '" + source->name() +
-                             "' gives " + portTypeName(source->output())};
-            }
-            byName.push_back(model);
-        }
-        PlantsSource& plants = *made.value();
-        for (const std::string& species : plants.speciesNames_) {
-            auto found = std::find_if(byName.begin(), byName.end(), [&](const PlantModelSource* m) {
-                return m->name() == species;
-            });
-            if (found == byName.end()) {
-                std::string known;
-                for (const PlantModelSource* m : byName) {
-                    known += (known.empty() ? "" : ", ") + m->name();
-                }
-                return Error{reader.where("models") + "species '" + species +
-                             "' has no plant model: `models` lists " +
-                             (known.empty() ? std::string("none") : known) +
-                             " (a plant_model source named like the species draws it)"};
-            }
-            plants.models_.push_back(*found);
-        }
-        plants.modelSources_ = std::move(byName);
-    } else {
-        made.value()->models_.assign(made.value()->speciesNames_.size(), nullptr);
+    if (Status attached = made.value()->attachModels(context); !attached) {
+        return attached.error();
     }
     return std::unique_ptr<Source>(std::move(made.value()));
+}
+
+// Models: species name = model source name; every species needs one.
+Status PlantsSource::attachModels(const SourceBuildContext& context) {
+    const BlockReader& reader = context.reader;
+    if (reader.value("models") == nullptr || context.inputList == nullptr) {
+        models_.assign(speciesNames_.size(), nullptr);
+        return Status::success();
+    }
+    Result<std::vector<const Source*>> models = (*context.inputList)("models");
+    if (!models) {
+        return models.error();
+    }
+    std::vector<const PlantModelSource*> byName;
+    for (const Source* source : models.value()) {
+        const PlantModelSource* model = PlantModelSource::from(source);
+        if (model == nullptr) {
+            return Error{reader.where("models") + "'models' expects plant_model sources, but '" +
+                         source->name() + "' gives " + portTypeName(source->output())};
+        }
+        byName.push_back(model);
+    }
+    for (const std::string& species : speciesNames_) {
+        auto found = std::find_if(byName.begin(), byName.end(),
+                                  [&](const PlantModelSource* m) { return m->name() == species; });
+        if (found == byName.end()) {
+            std::string known;
+            for (const PlantModelSource* m : byName) {
+                known += (known.empty() ? "" : ", ") + m->name();
+            }
+            return Error{reader.where("models") + "species '" + species +
+                         "' has no plant model: `models` lists " +
+                         (known.empty() ? std::string("none") : known) +
+                         " (a plant_model source named like the species draws it)"};
+        }
+        models_.push_back(*found);
+    }
+    modelSources_ = std::move(byName);
+    return Status::success();
 }
 
 }  // namespace sylva

@@ -72,25 +72,9 @@ std::string lastGdalError(const char* fallback) {
     return (message != nullptr && *message != '\0') ? std::string(message) : std::string(fallback);
 }
 
-// Reads everything produce() needs from the file; errors name the file.
-Result<RasterSource::Info> probe(const RasterParameters& p, RasterKind& kind) {
-    RasterSource::Info info;
-    info.path = p.file.string();
-    std::error_code ec;
-    if (!std::filesystem::exists(p.file, ec)) {
-        return Error{info.path + ": file not found"};
-    }
-    Result<void*> opened = GdalDatasetPool::dataset(info.path);
-    if (!opened) {
-        return opened.error();
-    }
-    GDALDatasetH dataset = opened.value();
-    info.width = GDALGetRasterXSize(dataset);
-    info.height = GDALGetRasterYSize(dataset);
-    const int bandCount = GDALGetRasterCount(dataset);
-    if (bandCount < 1 || info.width < 1 || info.height < 1) {
-        return Error{info.path + ": the file has no raster bands"};
-    }
+// The geotransform (and its inverse) and the CRS as WKT: the file's own, or `bounds` on
+// WGS84 longitude/latitude; whether the CRS is geographic and the columns wrap.
+Status georeference(const RasterParameters& p, GDALDatasetH dataset, RasterSource::Info& info) {
     if (p.bounds) {
         const auto& b = *p.bounds;
         if (!(b[2] > b[0]) || !(b[3] > b[1])) {
@@ -143,7 +127,13 @@ Result<RasterSource::Info> probe(const RasterParameters& p, RasterKind& kind) {
     }
     info.wrapX = info.geographic && std::abs(info.geoTransform[1] * info.width) >= 359.999 &&
                  info.geoTransform[2] == 0.0;
+    return Status::success();
+}
 
+// The bands (given, or [1] for elevation and single-band files, else [1, 2, 3]), the
+// kind they make (Auto resolved), their scale/offset and data type, the vertical unit.
+Status chooseBands(const RasterParameters& p, GDALDatasetH dataset, int bandCount, RasterKind& kind,
+                   RasterSource::Info& info) {
     info.bands = p.bands;
     if (info.bands.empty()) {
         if (kind == RasterKind::Elevation || (kind == RasterKind::Auto && bandCount == 1)) {
@@ -186,6 +176,34 @@ Result<RasterSource::Info> probe(const RasterParameters& p, RasterKind& kind) {
                          "' (expected m, ft or US survey foot)"};
         }
         info.unitFactor = *factor;
+    }
+    return Status::success();
+}
+
+// Reads everything produce() needs from the file; errors name the file.
+Result<RasterSource::Info> probe(const RasterParameters& p, RasterKind& kind) {
+    RasterSource::Info info;
+    info.path = p.file.string();
+    std::error_code ec;
+    if (!std::filesystem::exists(p.file, ec)) {
+        return Error{info.path + ": file not found"};
+    }
+    Result<void*> opened = GdalDatasetPool::dataset(info.path);
+    if (!opened) {
+        return opened.error();
+    }
+    GDALDatasetH dataset = opened.value();
+    info.width = GDALGetRasterXSize(dataset);
+    info.height = GDALGetRasterYSize(dataset);
+    const int bandCount = GDALGetRasterCount(dataset);
+    if (bandCount < 1 || info.width < 1 || info.height < 1) {
+        return Error{info.path + ": the file has no raster bands"};
+    }
+    if (Status located = georeference(p, dataset, info); !located) {
+        return located.error();
+    }
+    if (Status bands = chooseBands(p, dataset, bandCount, kind, info); !bands) {
+        return bands.error();
     }
     return info;
 }
@@ -311,6 +329,338 @@ std::unique_ptr<RasterSource> RasterSource::open(std::string name, RasterParamet
     return source;
 }
 
+namespace {
+
+// Step 1: every texel centre of the tile (border included) in source pixel coordinates
+// (full resolution), `ok` where the transformation succeeded, and the extent of those.
+struct SourcePixels {
+    std::vector<double> x, y;
+    std::vector<int> ok;
+    double minX = 1e300, maxX = -1e300, minY = 1e300, maxY = -1e300;
+    bool empty() const { return minX > maxX; }
+};
+
+// One row of texel centres (longitudes `lon`, one latitude) to the file's CRS.
+// Approximate transformer in the manner of GDALApproxTransform: the end points and the
+// midpoint of a span are transformed exactly; if linear interpolation misses the
+// midpoint by at most `tolerance` the span is interpolated, otherwise it is split in
+// two. Exact at every transformed point.
+void transformRow(OGRCoordinateTransformationH transform, const std::vector<double>& lon,
+                  double latitude, double tolerance, double* rowX, double* rowY, int* rowOk) {
+    const int stride = static_cast<int>(lon.size());
+    auto exact = [&](int i) {
+        rowX[i] = lon[i];
+        rowY[i] = latitude;
+        OCTTransformEx(transform, 1, &rowX[i], &rowY[i], nullptr, &rowOk[i]);
+        rowOk[i] = rowOk[i] && std::isfinite(rowX[i]) && std::isfinite(rowY[i]);
+    };
+    auto span = [&](auto&& self, int i0, int i1) -> void {
+        if (i1 - i0 <= 1) {
+            return;
+        }
+        const int mid = (i0 + i1) / 2;
+        exact(mid);
+        if (rowOk[i0] && rowOk[i1] && rowOk[mid]) {
+            const double t = double(mid - i0) / (i1 - i0);
+            const double ex = rowX[i0] + (rowX[i1] - rowX[i0]) * t - rowX[mid];
+            const double ey = rowY[i0] + (rowY[i1] - rowY[i0]) * t - rowY[mid];
+            if (std::hypot(ex, ey) <= tolerance) {
+                for (int i = i0 + 1; i < i1; ++i) {
+                    if (i == mid) {
+                        continue;
+                    }
+                    const double u = double(i - i0) / (i1 - i0);
+                    rowX[i] = rowX[i0] + (rowX[i1] - rowX[i0]) * u;
+                    rowY[i] = rowY[i0] + (rowY[i1] - rowY[i0]) * u;
+                    rowOk[i] = 1;
+                }
+                return;
+            }
+        }
+        self(self, i0, mid);
+        self(self, mid, i1);
+    };
+    exact(0);
+    exact(stride - 1);
+    span(span, 0, stride - 1);
+}
+
+SourcePixels sourcePixels(const RasterSource::Info& info, const ImageTile& tile,
+                          OGRCoordinateTransformationH transform) {
+    const int stride = tile.stride();
+    const int border = tile.border();
+    const std::size_t count = static_cast<std::size_t>(stride) * stride;
+    SourcePixels pixels;
+    pixels.x.resize(count);
+    pixels.y.resize(count);
+    pixels.ok.assign(count, 0);
+    const double* geo = info.geoTransform.data();
+    // The tolerance: 0.125 source pixels.
+    const double tolerance =
+        0.125 * std::min(std::hypot(geo[1], geo[4]), std::hypot(geo[2], geo[5]));
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    std::vector<double> lon(stride);
+    for (int j = 0; j < stride; ++j) {
+        const double latitude = tile.texelLatitude(j - border) / kDegree;
+        for (int i = 0; i < stride; ++i) {
+            double longitude = tile.texelLongitude(i - border) / kDegree;
+            if (info.geographic) {
+                longitude = longitude - 360.0 * std::floor((longitude + 180.0) / 360.0);
+            }
+            lon[i] = longitude;
+        }
+        const std::size_t row = std::size_t(j) * stride;
+        transformRow(transform, lon, latitude, tolerance, pixels.x.data() + row,
+                     pixels.y.data() + row, pixels.ok.data() + row);
+    }
+    CPLPopErrorHandler();
+    const double* inv = info.inverseTransform.data();
+    for (std::size_t n = 0; n < count; ++n) {
+        double& px = pixels.x[n];
+        double& py = pixels.y[n];
+        if (!pixels.ok[n] || !std::isfinite(px) || !std::isfinite(py)) {
+            pixels.ok[n] = 0;
+            continue;
+        }
+        const double x = px, y = py;
+        px = inv[0] + x * inv[1] + y * inv[2];
+        py = inv[3] + x * inv[4] + y * inv[5];
+        if (info.wrapX) {
+            px -= info.width * std::floor(px / info.width);
+        }
+        pixels.minX = std::min(pixels.minX, px);
+        pixels.maxX = std::max(pixels.maxX, px);
+        pixels.minY = std::min(pixels.minY, py);
+        pixels.maxY = std::max(pixels.maxY, py);
+    }
+    return pixels;
+}
+
+// Step 2: source pixels per texel, from the centre texel's neighbours (or the extent).
+double texelFootprint(const RasterSource::Info& info, const SourcePixels& pixels, int stride,
+                      int border, int size) {
+    const int c = border + size / 2;
+    const std::size_t n0 = std::size_t(c) * stride + c, nx = n0 + 1, ny = n0 + stride;
+    if (pixels.ok[n0] && pixels.ok[nx] && pixels.ok[ny]) {
+        double dxx = pixels.x[nx] - pixels.x[n0];
+        if (info.wrapX && std::abs(dxx) > info.width / 2.0) {
+            dxx -= std::copysign(double(info.width), dxx);
+        }
+        return std::max(std::hypot(dxx, pixels.y[nx] - pixels.y[n0]),
+                        std::hypot(pixels.x[ny] - pixels.x[n0], pixels.y[ny] - pixels.y[n0]));
+    }
+    return std::max(pixels.maxX - pixels.minX, pixels.maxY - pixels.minY) / size;
+}
+
+// Step 3: the source window [x0, x0 + width) × [y0, y0 + height) and the buffer it is
+// read into, f times smaller when minifying (average resampling, so GDAL uses the
+// file's overviews), per band and with GDAL's mask band.
+struct SourceWindow {
+    int x0 = 0, y0 = 0, width = 0, height = 0;
+    int bufferWidth = 0, bufferHeight = 0;
+    std::vector<std::vector<float>> values;  // per band
+    std::vector<float> mask;
+    bool empty() const { return width <= 0 || height <= 0; }
+};
+
+SourceWindow sourceWindow(const RasterSource::Info& info, const SourcePixels& pixels, double f,
+                          int stride) {
+    const double kernelMargin = 2.0 + f;
+    SourceWindow window;
+    int x0 = static_cast<int>(std::floor(pixels.minX - kernelMargin));
+    int x1 = static_cast<int>(std::ceil(pixels.maxX + kernelMargin));
+    int y0 = static_cast<int>(std::floor(pixels.minY - kernelMargin));
+    int y1 = static_cast<int>(std::ceil(pixels.maxY + kernelMargin));
+    if (info.wrapX) {
+        x0 = 0;
+        x1 = info.width;
+    }
+    x0 = std::clamp(x0, 0, info.width);
+    x1 = std::clamp(x1, 0, info.width);
+    y0 = std::clamp(y0, 0, info.height);
+    y1 = std::clamp(y1, 0, info.height);
+    window.x0 = x0;
+    window.y0 = y0;
+    window.width = x1 - x0;
+    window.height = y1 - y0;
+    if (window.empty()) {
+        return window;
+    }
+    const int limit = 4 * stride;
+    window.bufferWidth =
+        std::clamp(static_cast<int>(std::ceil(window.width / f)), 1, std::max(limit, 1));
+    window.bufferHeight =
+        std::clamp(static_cast<int>(std::ceil(window.height / f)), 1, std::max(limit, 1));
+    return window;
+}
+
+Status readWindow(const RasterSource::Info& info, GDALDatasetH dataset, Resampling resampling,
+                  SourceWindow& window) {
+    const bool minify = window.bufferWidth < window.width || window.bufferHeight < window.height;
+    GDALRasterIOExtraArg extra;
+    INIT_RASTERIO_EXTRA_ARG(extra);
+    extra.eResampleAlg =
+        (minify && resampling != Resampling::Nearest) ? GRIORA_Average : GRIORA_NearestNeighbour;
+    const std::size_t bufferCount =
+        static_cast<std::size_t>(window.bufferWidth) * window.bufferHeight;
+    const int bandCount = static_cast<int>(info.bands.size());
+    window.values.assign(bandCount, std::vector<float>(bufferCount));
+    window.mask.assign(bufferCount, 0.0f);
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    CPLErrorReset();
+    CPLErr err = CE_None;
+    for (int b = 0; b < bandCount && err == CE_None; ++b) {
+        GDALRasterBandH band = GDALGetRasterBand(dataset, info.bands[b]);
+        err = GDALRasterIOEx(band, GF_Read, window.x0, window.y0, window.width, window.height,
+                             window.values[b].data(), window.bufferWidth, window.bufferHeight,
+                             GDT_Float32, 0, 0, &extra);
+    }
+    if (err == CE_None) {
+        GDALRasterBandH maskBand = GDALGetMaskBand(GDALGetRasterBand(dataset, info.bands[0]));
+        err = GDALRasterIOEx(maskBand, GF_Read, window.x0, window.y0, window.width, window.height,
+                             window.mask.data(), window.bufferWidth, window.bufferHeight,
+                             GDT_Float32, 0, 0, &extra);
+    }
+    const std::string reason = lastGdalError("read failed");
+    CPLPopErrorHandler();
+    if (err != CE_None) {
+        return Error{info.path + ": cannot read pixels (" + reason + ")"};
+    }
+    return Status::success();
+}
+
+// Step 4: validity and units, per buffer pixel: the mask in [0, 1] (0 on `nodata` and
+// non-finite values); values through the band's scale/offset, /255 for 8-bit images,
+// the source's scale/offset, then sRGB decoding (images) or the vertical unit
+// (elevation).
+void decodeWindow(const RasterSource::Info& info, const RasterParameters& parameters, bool image,
+                  SourceWindow& window) {
+    const bool srgb = parameters.srgb.value_or(info.byteData);
+    const int bandCount = static_cast<int>(info.bands.size());
+    for (std::size_t n = 0; n < window.mask.size(); ++n) {
+        float m = std::clamp(window.mask[n] / 255.0f, 0.0f, 1.0f);
+        for (int b = 0; b < bandCount; ++b) {
+            float& v = window.values[b][n];
+            if (parameters.nodata && v == static_cast<float>(*parameters.nodata)) {
+                m = 0.0f;
+            }
+            if (!std::isfinite(v)) {
+                m = 0.0f;
+                v = 0.0f;
+                continue;
+            }
+            double x = v * info.bandScale[b] + info.bandOffset[b];
+            if (image && info.byteData) {
+                x /= 255.0;
+            }
+            x = x * parameters.scale + parameters.offset;
+            if (image && srgb) {
+                x = srgbToLinear(static_cast<float>(std::clamp(x, 0.0, 1.0)));
+            } else if (!image) {
+                x *= info.unitFactor;
+            }
+            v = static_cast<float>(x);
+        }
+        window.mask[n] = m;
+    }
+}
+
+// Step 5: the kernel at one point of the buffer (u, v: buffer coordinates with pixel
+// centres at integers). Bilinear weights of the valid pixels give the coverage (and the
+// value unless cubic applies: Keys cubic where all 16 pixels are valid).
+class WindowSampler {
+public:
+    WindowSampler(const RasterSource::Info& info, const SourceWindow& window)
+        : window_(window), wrap_(info.wrapX), bands_(static_cast<int>(info.bands.size())) {}
+
+    // Returns the coverage; `result` gets the band values where it is positive.
+    double sample(Resampling resampling, double u, double v, float result[3]) const {
+        for (int b = 0; b < 3; ++b) {
+            result[b] = 0.0f;
+        }
+        if (resampling == Resampling::Nearest) {
+            const int ni = column(static_cast<int>(std::floor(u + 0.5)));
+            const int nj = static_cast<int>(std::floor(v + 0.5));
+            const double coverage = maskAt(ni, nj);
+            if (coverage > 0.0) {
+                for (int b = 0; b < bands_; ++b) {
+                    result[b] = window_.values[b][std::size_t(nj) * window_.bufferWidth + ni];
+                }
+            }
+            return coverage;
+        }
+        const int iu = static_cast<int>(std::floor(u)), iv = static_cast<int>(std::floor(v));
+        const double fu = u - iu, fv = v - iv;
+        double weightSum = 0.0, sums[3] = {0, 0, 0};
+        bool allValid = true;
+        for (int dj = 0; dj < 2; ++dj) {
+            for (int di = 0; di < 2; ++di) {
+                const double w = (di ? fu : 1 - fu) * (dj ? fv : 1 - fv);
+                const float m = maskAt(iu + di, iv + dj);
+                allValid = allValid && m >= 1.0f;
+                if (m <= 0.0f || w <= 0.0) {
+                    continue;
+                }
+                const std::size_t at = std::size_t(iv + dj) * window_.bufferWidth + column(iu + di);
+                weightSum += w * m;
+                for (int b = 0; b < bands_; ++b) {
+                    sums[b] += w * m * window_.values[b][at];
+                }
+            }
+        }
+        if (weightSum > 1e-9) {
+            for (int b = 0; b < bands_; ++b) {
+                result[b] = static_cast<float>(sums[b] / weightSum);
+            }
+        }
+        if (resampling == Resampling::Cubic && allValid) {
+            cubic(iu, iv, fu, fv, result);
+        }
+        return weightSum;
+    }
+
+private:
+    // Keys cubic over the 4 × 4 pixels around (iu, iv), when all are valid.
+    void cubic(int iu, int iv, double fu, double fv, float result[3]) const {
+        double sums[3] = {0, 0, 0};
+        for (int dj = -1; dj <= 2; ++dj) {
+            const double wy = keys(fv - dj);
+            for (int di = -1; di <= 2; ++di) {
+                if (maskAt(iu + di, iv + dj) < 1.0f) {
+                    return;
+                }
+                const double w = wy * keys(fu - di);
+                const std::size_t at = std::size_t(iv + dj) * window_.bufferWidth + column(iu + di);
+                for (int b = 0; b < bands_; ++b) {
+                    sums[b] += w * window_.values[b][at];
+                }
+            }
+        }
+        for (int b = 0; b < bands_; ++b) {
+            result[b] = static_cast<float>(sums[b]);
+        }
+    }
+    int column(int i) const {
+        if (wrap_) {
+            return ((i % window_.bufferWidth) + window_.bufferWidth) % window_.bufferWidth;
+        }
+        return i;
+    }
+    float maskAt(int i, int j) const {
+        i = column(i);
+        if (i < 0 || j < 0 || i >= window_.bufferWidth || j >= window_.bufferHeight) {
+            return 0.0f;
+        }
+        return window_.mask[std::size_t(j) * window_.bufferWidth + i];
+    }
+
+    const SourceWindow& window_;
+    bool wrap_;
+    int bands_;
+};
+
+}  // namespace
+
 Result<TilePointer> RasterSource::produce(const TileKey& key, TileProvider& provider) const {
     if (openError_) {
         return *openError_;
@@ -340,274 +690,38 @@ Result<TilePointer> RasterSource::produce(const TileKey& key, TileProvider& prov
     GDALDatasetH dataset = opened.value();
     auto transform = static_cast<OGRCoordinateTransformationH>(transformed.value());
 
-    // 1. Texel centres -> source pixel coordinates (full resolution).
     const int stride = tile->stride();
     const int border = format.border;
-    const std::size_t count = static_cast<std::size_t>(stride) * stride;
-    std::vector<double> px(count), py(count);
-    std::vector<int> ok(count, 0);
-    // Approximate transformer in the manner of GDALApproxTransform: per row, the
-    // end points and the midpoint of a span are transformed exactly; if linear
-    // interpolation misses the midpoint by at most 0.125 source pixels the span is
-    // interpolated, otherwise it is split in two. Exact at every transformed point.
-    const double* geo = info.geoTransform.data();
-    const double tolerance =
-        0.125 * std::min(std::hypot(geo[1], geo[4]), std::hypot(geo[2], geo[5]));
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    std::vector<double> lon(stride);
-    for (int j = 0; j < stride; ++j) {
-        const double latitude = tile->texelLatitude(j - border) / kDegree;
-        for (int i = 0; i < stride; ++i) {
-            double longitude = tile->texelLongitude(i - border) / kDegree;
-            if (info.geographic) {
-                longitude = longitude - 360.0 * std::floor((longitude + 180.0) / 360.0);
-            }
-            lon[i] = longitude;
-        }
-        double* rowX = px.data() + std::size_t(j) * stride;
-        double* rowY = py.data() + std::size_t(j) * stride;
-        int* rowOk = ok.data() + std::size_t(j) * stride;
-        auto exact = [&](int i) {
-            rowX[i] = lon[i];
-            rowY[i] = latitude;
-            OCTTransformEx(transform, 1, &rowX[i], &rowY[i], nullptr, &rowOk[i]);
-            rowOk[i] = rowOk[i] && std::isfinite(rowX[i]) && std::isfinite(rowY[i]);
-        };
-        auto span = [&](auto&& self, int i0, int i1) -> void {
-            if (i1 - i0 <= 1) {
-                return;
-            }
-            const int mid = (i0 + i1) / 2;
-            exact(mid);
-            if (rowOk[i0] && rowOk[i1] && rowOk[mid]) {
-                const double t = double(mid - i0) / (i1 - i0);
-                const double ex = rowX[i0] + (rowX[i1] - rowX[i0]) * t - rowX[mid];
-                const double ey = rowY[i0] + (rowY[i1] - rowY[i0]) * t - rowY[mid];
-                if (std::hypot(ex, ey) <= tolerance) {
-                    for (int i = i0 + 1; i < i1; ++i) {
-                        if (i == mid) {
-                            continue;
-                        }
-                        const double u = double(i - i0) / (i1 - i0);
-                        rowX[i] = rowX[i0] + (rowX[i1] - rowX[i0]) * u;
-                        rowY[i] = rowY[i0] + (rowY[i1] - rowY[i0]) * u;
-                        rowOk[i] = 1;
-                    }
-                    return;
-                }
-            }
-            self(self, i0, mid);
-            self(self, mid, i1);
-        };
-        exact(0);
-        exact(stride - 1);
-        span(span, 0, stride - 1);
-    }
-    CPLPopErrorHandler();
-    const double* inv = info.inverseTransform.data();
-    double minX = 1e300, maxX = -1e300, minY = 1e300, maxY = -1e300;
-    for (std::size_t n = 0; n < count; ++n) {
-        if (!ok[n] || !std::isfinite(px[n]) || !std::isfinite(py[n])) {
-            ok[n] = 0;
-            continue;
-        }
-        const double x = px[n], y = py[n];
-        px[n] = inv[0] + x * inv[1] + y * inv[2];
-        py[n] = inv[3] + x * inv[4] + y * inv[5];
-        if (info.wrapX) {
-            px[n] -= info.width * std::floor(px[n] / info.width);
-        }
-        minX = std::min(minX, px[n]);
-        maxX = std::max(maxX, px[n]);
-        minY = std::min(minY, py[n]);
-        maxY = std::max(maxY, py[n]);
-    }
-    if (minX > maxX) {
+    const SourcePixels pixels = sourcePixels(info, *tile, transform);  // 1.
+    if (pixels.empty()) {
         return TilePointer(std::move(tile));
     }
-    // 2. Source pixels per texel, from the centre texel's neighbours.
-    double footprint = 0.0;
-    {
-        const int c = border + format.size / 2;
-        const std::size_t n0 = std::size_t(c) * stride + c, nx = n0 + 1, ny = n0 + stride;
-        if (ok[n0] && ok[nx] && ok[ny]) {
-            double dxx = px[nx] - px[n0];
-            if (info.wrapX && std::abs(dxx) > info.width / 2.0) {
-                dxx -= std::copysign(double(info.width), dxx);
-            }
-            footprint = std::max(std::hypot(dxx, py[nx] - py[n0]),
-                                 std::hypot(px[ny] - px[n0], py[ny] - py[n0]));
-        } else {
-            footprint = std::max(maxX - minX, maxY - minY) / format.size;
-        }
-    }
-    const double f = std::max(footprint, 1.0);
-    // 3. The source window and the buffer it is read into.
-    const double kernelMargin = 2.0 + f;
-    int x0 = static_cast<int>(std::floor(minX - kernelMargin));
-    int x1 = static_cast<int>(std::ceil(maxX + kernelMargin));
-    int y0 = static_cast<int>(std::floor(minY - kernelMargin));
-    int y1 = static_cast<int>(std::ceil(maxY + kernelMargin));
-    if (info.wrapX) {
-        x0 = 0;
-        x1 = info.width;
-    }
-    x0 = std::clamp(x0, 0, info.width);
-    x1 = std::clamp(x1, 0, info.width);
-    y0 = std::clamp(y0, 0, info.height);
-    y1 = std::clamp(y1, 0, info.height);
-    if (x1 <= x0 || y1 <= y0) {
+    const double f = std::max(texelFootprint(info, pixels, stride, border, format.size), 1.0);
+    SourceWindow window = sourceWindow(info, pixels, f, stride);  // 3.
+    if (window.empty()) {
         return TilePointer(std::move(tile));
     }
-    const int windowW = x1 - x0, windowH = y1 - y0;
-    const int limit = 4 * stride;
-    const int bufferW = std::clamp(static_cast<int>(std::ceil(windowW / f)), 1, std::max(limit, 1));
-    const int bufferH = std::clamp(static_cast<int>(std::ceil(windowH / f)), 1, std::max(limit, 1));
-    const bool minify = bufferW < windowW || bufferH < windowH;
-    GDALRasterIOExtraArg extra;
-    INIT_RASTERIO_EXTRA_ARG(extra);
-    extra.eResampleAlg = (minify && parameters_.resampling != Resampling::Nearest)
-                             ? GRIORA_Average
-                             : GRIORA_NearestNeighbour;
-    const std::size_t bufferCount = static_cast<std::size_t>(bufferW) * bufferH;
-    const int bandCount = static_cast<int>(info.bands.size());
-    std::vector<std::vector<float>> values(bandCount, std::vector<float>(bufferCount));
-    std::vector<float> mask(bufferCount);
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    CPLErrorReset();
-    CPLErr err = CE_None;
-    for (int b = 0; b < bandCount && err == CE_None; ++b) {
-        GDALRasterBandH band = GDALGetRasterBand(dataset, info.bands[b]);
-        err = GDALRasterIOEx(band, GF_Read, x0, y0, windowW, windowH, values[b].data(), bufferW,
-                             bufferH, GDT_Float32, 0, 0, &extra);
+    if (Status read = readWindow(info, dataset, parameters_.resampling, window); !read) {
+        return read.error();
     }
-    if (err == CE_None) {
-        GDALRasterBandH maskBand = GDALGetMaskBand(GDALGetRasterBand(dataset, info.bands[0]));
-        err = GDALRasterIOEx(maskBand, GF_Read, x0, y0, windowW, windowH, mask.data(), bufferW,
-                             bufferH, GDT_Float32, 0, 0, &extra);
-    }
-    const std::string reason = lastGdalError("read failed");
-    CPLPopErrorHandler();
-    if (err != CE_None) {
-        return Error{info.path + ": cannot read pixels (" + reason + ")"};
-    }
-    // 4. Validity and units, per buffer pixel.
     const bool image =
         output() == PortType::Image || (coverageOnly_ && parameters_.kind == RasterKind::Image);
-    const bool srgb = parameters_.srgb.value_or(info.byteData);
-    for (std::size_t n = 0; n < bufferCount; ++n) {
-        float m = std::clamp(mask[n] / 255.0f, 0.0f, 1.0f);
-        for (int b = 0; b < bandCount; ++b) {
-            float& v = values[b][n];
-            if (parameters_.nodata && v == static_cast<float>(*parameters_.nodata)) {
-                m = 0.0f;
-            }
-            if (!std::isfinite(v)) {
-                m = 0.0f;
-                v = 0.0f;
-                continue;
-            }
-            double x = v * info.bandScale[b] + info.bandOffset[b];
-            if (image && info.byteData) {
-                x /= 255.0;
-            }
-            x = x * parameters_.scale + parameters_.offset;
-            if (image && srgb) {
-                x = srgbToLinear(static_cast<float>(std::clamp(x, 0.0, 1.0)));
-            } else if (!image) {
-                x *= info.unitFactor;
-            }
-            v = static_cast<float>(x);
-        }
-        mask[n] = m;
-    }
-    // 5. Resampling per texel. u, v: buffer coordinates with pixel centres at integers.
-    const double sx = double(bufferW) / windowW, sy = double(bufferH) / windowH;
-    auto column = [&](int i) -> int {
-        if (info.wrapX) {
-            return ((i % bufferW) + bufferW) % bufferW;
-        }
-        return i;
-    };
-    auto maskAt = [&](int i, int j) -> float {
-        i = column(i);
-        if (i < 0 || j < 0 || i >= bufferW || j >= bufferH) {
-            return 0.0f;
-        }
-        return mask[std::size_t(j) * bufferW + i];
-    };
+    decodeWindow(info, parameters_, image, window);  // 4.
+    // 5. Resampling per texel.
+    const WindowSampler sampler(info, window);
+    const int bandCount = static_cast<int>(info.bands.size());
+    const double sx = double(window.bufferWidth) / window.width;
+    const double sy = double(window.bufferHeight) / window.height;
     float result[3];
     for (int j = 0; j < stride; ++j) {
         for (int i = 0; i < stride; ++i) {
             const std::size_t n = std::size_t(j) * stride + i;
-            if (!ok[n]) {
+            if (!pixels.ok[n]) {
                 continue;
             }
-            const double u = (px[n] - x0) * sx - 0.5, v = (py[n] - y0) * sy - 0.5;
-            const int iu = static_cast<int>(std::floor(u)), iv = static_cast<int>(std::floor(v));
-            const double fu = u - iu, fv = v - iv;
-            double coverage = 0.0;
-            for (int b = 0; b < 3; ++b) {
-                result[b] = 0.0f;
-            }
-            if (parameters_.resampling == Resampling::Nearest) {
-                const int ni = column(static_cast<int>(std::floor(u + 0.5)));
-                const int nj = static_cast<int>(std::floor(v + 0.5));
-                coverage = maskAt(ni, nj);
-                if (coverage > 0.0) {
-                    for (int b = 0; b < bandCount; ++b) {
-                        result[b] = values[b][std::size_t(nj) * bufferW + ni];
-                    }
-                }
-            } else {
-                // Bilinear weights give the coverage (and the value unless cubic applies).
-                double weightSum = 0.0, sums[3] = {0, 0, 0};
-                bool allValid = true;
-                for (int dj = 0; dj < 2; ++dj) {
-                    for (int di = 0; di < 2; ++di) {
-                        const double w = (di ? fu : 1 - fu) * (dj ? fv : 1 - fv);
-                        const float m = maskAt(iu + di, iv + dj);
-                        allValid = allValid && m >= 1.0f;
-                        if (m <= 0.0f || w <= 0.0) {
-                            continue;
-                        }
-                        const std::size_t at = std::size_t(iv + dj) * bufferW + column(iu + di);
-                        weightSum += w * m;
-                        for (int b = 0; b < bandCount; ++b) {
-                            sums[b] += w * m * values[b][at];
-                        }
-                    }
-                }
-                coverage = weightSum;
-                if (weightSum > 1e-9) {
-                    for (int b = 0; b < bandCount; ++b) {
-                        result[b] = static_cast<float>(sums[b] / weightSum);
-                    }
-                }
-                if (parameters_.resampling == Resampling::Cubic && allValid) {
-                    bool cubicValid = true;
-                    double cubic[3] = {0, 0, 0};
-                    for (int dj = -1; dj <= 2 && cubicValid; ++dj) {
-                        const double wy = keys(fv - dj);
-                        for (int di = -1; di <= 2; ++di) {
-                            if (maskAt(iu + di, iv + dj) < 1.0f) {
-                                cubicValid = false;
-                                break;
-                            }
-                            const double w = wy * keys(fu - di);
-                            const std::size_t at = std::size_t(iv + dj) * bufferW + column(iu + di);
-                            for (int b = 0; b < bandCount; ++b) {
-                                cubic[b] += w * values[b][at];
-                            }
-                        }
-                    }
-                    if (cubicValid) {
-                        for (int b = 0; b < bandCount; ++b) {
-                            result[b] = static_cast<float>(cubic[b]);
-                        }
-                    }
-                }
-            }
+            const double u = (pixels.x[n] - window.x0) * sx - 0.5;
+            const double v = (pixels.y[n] - window.y0) * sy - 0.5;
+            const double coverage = sampler.sample(parameters_.resampling, u, v, result);
             const int ix = i - border, iy = j - border;
             if (coverageOnly_) {
                 tile->at(ix, iy, 0) = static_cast<float>(coverage);

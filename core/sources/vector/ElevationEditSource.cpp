@@ -34,6 +34,109 @@ glm::dvec2 centroid(const Feature& feature) {
     return sum / (3.0 * area);
 }
 
+using Mode = ElevationEditParameters::Mode;
+
+// The edit's value for one feature: its attribute when one is named, else the default.
+Result<double> editValue(const Feature& feature, std::optional<std::size_t> field,
+                         const std::string& attribute, double fallback, const std::string& file) {
+    if (!field) {
+        return fallback;
+    }
+    const std::string& text = feature.attributes[*field];
+    char* end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !std::isfinite(value)) {
+        return Error{file + ": feature " + std::to_string(feature.id) + ": attribute '" +
+                     attribute + "' is not a number: '" + text + "'"};
+    }
+    return value;
+}
+
+// One polygon applied to the tile: its value, its boundary (for the feather) and its
+// slope plane's anchor.
+class PolygonEdit {
+public:
+    PolygonEdit(const ElevationEditParameters& parameters, const CoverageRasterizer& rasterizer,
+                const FeatureHit& hit, double value)
+        : parameters_(parameters),
+          rasterizer_(rasterizer),
+          shift_(hit.longitudeShift),
+          value_(value),
+          anchor_(centroid(*hit.feature)),
+          anchorEast_(Ellipsoid::primeVerticalRadius(anchor_.y) * std::cos(anchor_.y)),
+          anchorNorth_(Ellipsoid::meridionalRadius(anchor_.y)) {
+        // Edges in grid coordinates for the distance to the boundary.
+        if (parameters_.feather > 0.0) {
+            for (const std::vector<glm::dvec2>& ring : hit.feature->parts) {
+                for (std::size_t i = 0; i + 1 < ring.size(); ++i) {
+                    edges_.emplace_back(rasterizer.toGrid(ring[i], shift_),
+                                        rasterizer.toGrid(ring[i + 1], shift_));
+                }
+            }
+        }
+    }
+
+    // The weight at a texel centre: 1 inside, else the area coverage or (with feather)
+    // the smoothstep of the distance to the nearest edge, in metres (`k`: metres per
+    // grid unit).
+    double weight(const glm::dvec2& centre, const glm::dvec2& k, double coverage) const {
+        if (edges_.empty() || !(coverage < 1.0)) {
+            return coverage;
+        }
+        int winding = 0;
+        double nearest = 1e300;
+        for (const auto& [p, q] : edges_) {
+            // Grid y grows southwards; the winding sign does not matter here.
+            if (p.y <= centre.y) {
+                if (q.y > centre.y &&
+                    (q.x - p.x) * (centre.y - p.y) - (centre.x - p.x) * (q.y - p.y) > 0) {
+                    ++winding;
+                }
+            } else if (q.y <= centre.y &&
+                       (q.x - p.x) * (centre.y - p.y) - (centre.x - p.x) * (q.y - p.y) < 0) {
+                --winding;
+            }
+            const glm::dvec2 d = (q - p) * k, r = (centre - p) * k;
+            const double dd = glm::dot(d, d);
+            const double t = dd > 0.0 ? std::clamp(glm::dot(r, d) / dd, 0.0, 1.0) : 0.0;
+            nearest = std::min(nearest, glm::length(r - t * d));
+        }
+        return winding != 0 ? 1.0
+                            : std::max(coverage, smoothstep(1.0 - nearest / parameters_.feather));
+    }
+
+    // h = h0 + w (target - h0), or h0 ± w amount.
+    float apply(float h, double weight, const glm::dvec2& centre) const {
+        switch (parameters_.mode) {
+            case Mode::Flatten:
+                return static_cast<float>(h + weight * (value_ - h));
+            case Mode::Raise:
+                return static_cast<float>(h + weight * value_);
+            case Mode::Lower:
+                return static_cast<float>(h - weight * value_);
+            case Mode::Slope: {
+                const glm::dvec2 lonLat = rasterizer_.toLonLat(centre);
+                const double east = (lonLat.x - shift_ - anchor_.x) * anchorEast_;
+                const double north = (lonLat.y - anchor_.y) * anchorNorth_;
+                const double plane =
+                    value_ + parameters_.gradient * (east * std::sin(parameters_.direction) +
+                                                     north * std::cos(parameters_.direction));
+                return static_cast<float>(h + weight * (plane - h));
+            }
+        }
+        return h;
+    }
+
+private:
+    const ElevationEditParameters& parameters_;
+    const CoverageRasterizer& rasterizer_;
+    double shift_;
+    double value_;
+    glm::dvec2 anchor_;
+    double anchorEast_, anchorNorth_;
+    std::vector<std::pair<glm::dvec2, glm::dvec2>> edges_;
+};
+
 }  // namespace
 
 ElevationEditSource::ElevationEditSource(std::string name, const Source* input,
@@ -63,7 +166,6 @@ Result<TilePointer> ElevationEditSource::produce(const TileKey& key, TileProvide
     }
     const FeatureCollection& collection = *loaded.value();
     const std::string file = features_->file().string();
-    using Mode = ElevationEditParameters::Mode;
     const bool usesHeight = parameters_.mode == Mode::Flatten || parameters_.mode == Mode::Slope;
     const std::string& attribute =
         usesHeight ? parameters_.heightAttribute : parameters_.amountAttribute;
@@ -95,15 +197,10 @@ Result<TilePointer> ElevationEditSource::produce(const TileKey& key, TileProvide
             return Error{file + ": feature " + std::to_string(feature.id) +
                          ": elevation_edit takes polygons, not points or lines"};
         }
-        double value = usesHeight ? parameters_.height : parameters_.amount;
-        if (field) {
-            const std::string& text = feature.attributes[*field];
-            char* end = nullptr;
-            value = std::strtod(text.c_str(), &end);
-            if (text.empty() || *end != '\0' || !std::isfinite(value)) {
-                return Error{file + ": feature " + std::to_string(feature.id) + ": attribute '" +
-                             attribute + "' is not a number: '" + text + "'"};
-            }
+        Result<double> value = editValue(
+            feature, field, attribute, usesHeight ? parameters_.height : parameters_.amount, file);
+        if (!value) {
+            return value.error();
         }
         rasterizer.fillPolygon(feature.parts, hit.longitudeShift, coverage);
         // Texel range touched: the feature's bounds grown by the feather.
@@ -117,78 +214,17 @@ Result<TilePointer> ElevationEditSource::produce(const TileKey& key, TileProvide
                   x1 = std::min(w - 1, static_cast<int>(b.x));
         const int y0 = std::max(0, static_cast<int>(std::floor(a.y))),
                   y1 = std::min(w - 1, static_cast<int>(b.y));
-        const glm::dvec2 anchor = centroid(feature);
-        const double anchorEast = Ellipsoid::primeVerticalRadius(anchor.y) * std::cos(anchor.y);
-        const double anchorNorth = Ellipsoid::meridionalRadius(anchor.y);
-        // Edges in grid coordinates for the distance to the boundary.
-        std::vector<std::pair<glm::dvec2, glm::dvec2>> edges;
-        if (parameters_.feather > 0.0) {
-            for (const std::vector<glm::dvec2>& ring : feature.parts) {
-                for (std::size_t i = 0; i + 1 < ring.size(); ++i) {
-                    edges.emplace_back(rasterizer.toGrid(ring[i], hit.longitudeShift),
-                                       rasterizer.toGrid(ring[i + 1], hit.longitudeShift));
-                }
-            }
-        }
+        const PolygonEdit edit(parameters_, rasterizer, hit, *value);
         for (int gy = y0; gy <= y1; ++gy) {
             const glm::dvec2 k = rasterizer.metresPerTexel(gy + 0.5);
             for (int gx = x0; gx <= x1; ++gx) {
-                const std::size_t index = std::size_t(gy) * w + gx;
-                double weight = coverage[index];
                 const glm::dvec2 centre(gx + 0.5, gy + 0.5);
-                if (!edges.empty() && weight < 1.0) {
-                    // Inside (winding) or the distance to the nearest edge, in metres.
-                    int winding = 0;
-                    double nearest = 1e300;
-                    for (const auto& [p, q] : edges) {
-                        // Grid y grows southwards; the winding sign does not matter here.
-                        if (p.y <= centre.y) {
-                            if (q.y > centre.y &&
-                                (q.x - p.x) * (centre.y - p.y) - (centre.x - p.x) * (q.y - p.y) >
-                                    0) {
-                                ++winding;
-                            }
-                        } else if (q.y <= centre.y &&
-                                   (q.x - p.x) * (centre.y - p.y) - (centre.x - p.x) * (q.y - p.y) <
-                                       0) {
-                            --winding;
-                        }
-                        const glm::dvec2 d = (q - p) * k, r = (centre - p) * k;
-                        const double dd = glm::dot(d, d);
-                        const double t = dd > 0.0 ? std::clamp(glm::dot(r, d) / dd, 0.0, 1.0) : 0.0;
-                        nearest = std::min(nearest, glm::length(r - t * d));
-                    }
-                    weight =
-                        winding != 0
-                            ? 1.0
-                            : std::max(weight, smoothstep(1.0 - nearest / parameters_.feather));
-                }
+                const double weight = edit.weight(centre, k, coverage[std::size_t(gy) * w + gx]);
                 if (weight <= 0.0) {
                     continue;
                 }
-                const int ix = gx - format.border, iy = gy - format.border;
-                float& h = tile->at(ix, iy, 0);
-                switch (parameters_.mode) {
-                    case Mode::Flatten:
-                        h = static_cast<float>(h + weight * (value - h));
-                        break;
-                    case Mode::Raise:
-                        h = static_cast<float>(h + weight * value);
-                        break;
-                    case Mode::Lower:
-                        h = static_cast<float>(h - weight * value);
-                        break;
-                    case Mode::Slope: {
-                        const glm::dvec2 lonLat = rasterizer.toLonLat(centre);
-                        const double east = (lonLat.x - hit.longitudeShift - anchor.x) * anchorEast;
-                        const double north = (lonLat.y - anchor.y) * anchorNorth;
-                        const double plane = value + parameters_.gradient *
-                                                         (east * std::sin(parameters_.direction) +
-                                                          north * std::cos(parameters_.direction));
-                        h = static_cast<float>(h + weight * (plane - h));
-                        break;
-                    }
-                }
+                float& h = tile->at(gx - format.border, gy - format.border, 0);
+                h = edit.apply(h, weight, centre);
             }
         }
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include <cpl_error.h>
 #include <gdal.h>
@@ -243,6 +244,150 @@ std::shared_ptr<const FeatureCollection> FeatureCollection::fromFeatures(
     return collection;
 }
 
+namespace {
+
+// The named layer, or the first one.
+Result<OGRLayerH> openLayer(GDALDatasetH dataset, const std::string& path,
+                            const std::string& name) {
+    if (name.empty()) {
+        if (GDALDatasetGetLayerCount(dataset) == 0) {
+            return Error{path + ": the file has no vector layer"};
+        }
+        return GDALDatasetGetLayer(dataset, 0);
+    }
+    OGRLayerH layer = GDALDatasetGetLayerByName(dataset, name.c_str());
+    if (layer == nullptr) {
+        std::string names;
+        for (int i = 0; i < GDALDatasetGetLayerCount(dataset); ++i) {
+            names += (i ? ", " : "") + std::string(OGR_L_GetName(GDALDatasetGetLayer(dataset, i)));
+        }
+        return Error{path + ": no layer '" + name + "' (layers: " + names + ")"};
+    }
+    return layer;
+}
+
+// Owns the layer CRS → WGS84 longitude/latitude transformation (none: the layer has no
+// CRS and is taken as longitude/latitude).
+class Wgs84Transform {
+public:
+    Wgs84Transform() = default;
+    Wgs84Transform(const Wgs84Transform&) = delete;
+    Wgs84Transform& operator=(const Wgs84Transform&) = delete;
+    ~Wgs84Transform() {
+        if (handle_ != nullptr) {
+            OCTDestroyCoordinateTransformation(handle_);
+        }
+    }
+
+    Status open(OGRLayerH layer, const std::string& where) {
+        OGRSpatialReferenceH target = OSRNewSpatialReference(nullptr);
+        OSRImportFromEPSG(target, 4326);
+        OSRSetAxisMappingStrategy(target, OAMS_TRADITIONAL_GIS_ORDER);
+        if (OGRSpatialReferenceH source = OGR_L_GetSpatialRef(layer)) {
+            OGRSpatialReferenceH clone = OSRClone(source);
+            OSRSetAxisMappingStrategy(clone, OAMS_TRADITIONAL_GIS_ORDER);
+            handle_ = OCTNewCoordinateTransformation(clone, target);
+            OSRDestroySpatialReference(clone);
+            if (handle_ == nullptr) {
+                OSRDestroySpatialReference(target);
+                return Error{where + ": cannot transform its CRS to WGS84 (" +
+                             lastGdalError("no transformation") + ")"};
+            }
+        }
+        OSRDestroySpatialReference(target);
+        return Status::success();
+    }
+    OGRCoordinateTransformationH handle() const { return handle_; }
+
+private:
+    OGRCoordinateTransformationH handle_ = nullptr;
+};
+
+// A feature's geometry to use: a clone, or (invalid = repair) the repaired geometry;
+// nullptr when the feature is to be skipped. Owned by the caller.
+Result<OGRGeometryH> usableGeometry(OGRFeatureH handle, const std::string& featureWhere,
+                                    const FeatureLoadOptions& options) {
+    OGRGeometryH original = OGR_F_GetGeometryRef(handle);
+    std::string problem;
+    if (original == nullptr || OGR_G_IsEmpty(original)) {
+        problem = "empty geometry";
+    } else if (hasUnclosedRing(original)) {
+        problem = "unclosed polygon ring";
+    } else if (!OGR_G_IsValid(original)) {
+        problem = "invalid geometry (" + lastGdalError("e.g. a self-intersection") + ")";
+    }
+    if (problem.empty()) {
+        return OGR_G_Clone(original);
+    }
+    if (options.invalid == FeatureLoadOptions::Invalid::Error) {
+        return Error{featureWhere + ": " + problem};
+    }
+    if (options.invalid == FeatureLoadOptions::Invalid::Skip || original == nullptr ||
+        OGR_G_IsEmpty(original)) {
+        return static_cast<OGRGeometryH>(nullptr);
+    }
+    OGRGeometryH repaired = OGR_G_MakeValid(original);
+    if (repaired == nullptr) {
+        return Error{featureWhere + ": cannot repair " + problem};
+    }
+    return repaired;
+}
+
+// One feature in WGS84 radians with its attributes; nothing when it is skipped (broken
+// geometry with invalid = skip or repair, no parts left).
+Result<std::optional<Feature>> readFeature(OGRFeatureH handle,
+                                           OGRCoordinateTransformationH transform, int fieldCount,
+                                           const std::string& where,
+                                           const FeatureLoadOptions& options) {
+    Feature feature;
+    feature.id = OGR_F_GetFID(handle);
+    const std::string featureWhere = where + ": feature " + std::to_string(feature.id);
+    Result<OGRGeometryH> usable = usableGeometry(handle, featureWhere, options);
+    if (!usable) {
+        return usable.error();
+    }
+    if (*usable == nullptr) {
+        return std::optional<Feature>{};
+    }
+    struct DestroyGeometry {
+        OGRGeometryH handle;
+        ~DestroyGeometry() { OGR_G_DestroyGeometry(handle); }
+    } destroyGeometry{*usable};
+    if (transform != nullptr && OGR_G_Transform(*usable, transform) != OGRERR_NONE) {
+        return Error{featureWhere + ": cannot reproject to WGS84 (" +
+                     lastGdalError("outside the CRS") + ")"};
+    }
+    Collected parts;
+    collect(*usable, parts);
+    if (!parts.rings.empty()) {
+        feature.kind = GeometryKind::Polygon;
+        feature.parts = std::move(parts.rings);
+    } else if (!parts.lines.empty()) {
+        feature.kind = GeometryKind::Line;
+        feature.parts = std::move(parts.lines);
+    } else {
+        feature.kind = GeometryKind::Point;
+        feature.parts = std::move(parts.points);
+    }
+    if (feature.parts.empty()) {
+        if (options.invalid == FeatureLoadOptions::Invalid::Error) {
+            return Error{featureWhere + ": empty geometry"};
+        }
+        return std::optional<Feature>{};
+    }
+    feature.attributes.resize(static_cast<std::size_t>(fieldCount));
+    feature.attributeSet.resize(static_cast<std::size_t>(fieldCount), false);
+    for (int i = 0; i < fieldCount; ++i) {
+        if (OGR_F_IsFieldSetAndNotNull(handle, i)) {
+            feature.attributes[std::size_t(i)] = OGR_F_GetFieldAsString(handle, i);
+            feature.attributeSet[std::size_t(i)] = true;
+        }
+    }
+    return std::optional<Feature>(std::move(feature));
+}
+
+}  // namespace
+
 Result<std::shared_ptr<const FeatureCollection>> FeatureCollection::load(
     const std::string& path, const FeatureLoadOptions& options) {
     GdalDatasetPool::registerDrivers();
@@ -257,136 +402,46 @@ Result<std::shared_ptr<const FeatureCollection>> FeatureCollection::load(
         GDALDatasetH handle;
         ~CloseDataset() { GDALClose(handle); }
     } closeDataset{dataset};
-
-    OGRLayerH layer = nullptr;
-    if (options.layer.empty()) {
-        if (GDALDatasetGetLayerCount(dataset) == 0) {
-            return Error{path + ": the file has no vector layer"};
-        }
-        layer = GDALDatasetGetLayer(dataset, 0);
-    } else {
-        layer = GDALDatasetGetLayerByName(dataset, options.layer.c_str());
-        if (layer == nullptr) {
-            std::string names;
-            for (int i = 0; i < GDALDatasetGetLayerCount(dataset); ++i) {
-                names +=
-                    (i ? ", " : "") + std::string(OGR_L_GetName(GDALDatasetGetLayer(dataset, i)));
-            }
-            return Error{path + ": no layer '" + options.layer + "' (layers: " + names + ")"};
-        }
+    Result<OGRLayerH> layer = openLayer(dataset, path, options.layer);
+    if (!layer) {
+        return layer.error();
     }
-    const std::string layerName = OGR_L_GetName(layer);
+    const std::string layerName = OGR_L_GetName(*layer);
     const std::string where = path + ": layer '" + layerName + "'";
     if (!options.where.empty()) {
         CPLErrorReset();
-        if (OGR_L_SetAttributeFilter(layer, options.where.c_str()) != OGRERR_NONE) {
+        if (OGR_L_SetAttributeFilter(*layer, options.where.c_str()) != OGRERR_NONE) {
             return Error{where + ": where '" + options.where +
                          "': " + lastGdalError("invalid filter")};
         }
     }
-
-    OGRSpatialReferenceH target = OSRNewSpatialReference(nullptr);
-    OSRImportFromEPSG(target, 4326);
-    OSRSetAxisMappingStrategy(target, OAMS_TRADITIONAL_GIS_ORDER);
-    OGRCoordinateTransformationH transform = nullptr;
-    if (OGRSpatialReferenceH source = OGR_L_GetSpatialRef(layer)) {
-        OGRSpatialReferenceH clone = OSRClone(source);
-        OSRSetAxisMappingStrategy(clone, OAMS_TRADITIONAL_GIS_ORDER);
-        transform = OCTNewCoordinateTransformation(clone, target);
-        OSRDestroySpatialReference(clone);
-        if (transform == nullptr) {
-            OSRDestroySpatialReference(target);
-            return Error{where + ": cannot transform its CRS to WGS84 (" +
-                         lastGdalError("no transformation") + ")"};
-        }
+    Wgs84Transform transform;
+    if (Status opened = transform.open(*layer, where); !opened) {
+        return opened.error();
     }
-    OSRDestroySpatialReference(target);
-    struct Cleanup {
-        OGRCoordinateTransformationH transform;
-        ~Cleanup() {
-            if (transform != nullptr) {
-                OCTDestroyCoordinateTransformation(transform);
-            }
-        }
-    } cleanup{transform};
 
     auto collection = std::make_shared<FeatureCollection>();
-    OGRFeatureDefnH definition = OGR_L_GetLayerDefn(layer);
+    OGRFeatureDefnH definition = OGR_L_GetLayerDefn(*layer);
     const int fieldCount = OGR_FD_GetFieldCount(definition);
     for (int i = 0; i < fieldCount; ++i) {
         collection->fields_.emplace_back(OGR_Fld_GetNameRef(OGR_FD_GetFieldDefn(definition, i)));
     }
-    OGR_L_ResetReading(layer);
+    OGR_L_ResetReading(*layer);
     CPLErrorReset();
-    while (OGRFeatureH handle = OGR_L_GetNextFeature(layer)) {
+    while (OGRFeatureH handle = OGR_L_GetNextFeature(*layer)) {
         struct DestroyFeature {
             OGRFeatureH handle;
             ~DestroyFeature() { OGR_F_Destroy(handle); }
         } destroyFeature{handle};
-        Feature feature;
-        feature.id = OGR_F_GetFID(handle);
-        const std::string featureWhere = where + ": feature " + std::to_string(feature.id);
-        OGRGeometryH original = OGR_F_GetGeometryRef(handle);
-        std::string problem;
-        if (original == nullptr || OGR_G_IsEmpty(original)) {
-            problem = "empty geometry";
-        } else if (hasUnclosedRing(original)) {
-            problem = "unclosed polygon ring";
-        } else if (!OGR_G_IsValid(original)) {
-            problem = "invalid geometry (" + lastGdalError("e.g. a self-intersection") + ")";
+        Result<std::optional<Feature>> feature =
+            readFeature(handle, transform.handle(), fieldCount, where, options);
+        if (!feature) {
+            return feature.error();
         }
-        OGRGeometryH geometry = nullptr;
-        if (!problem.empty()) {
-            if (options.invalid == FeatureLoadOptions::Invalid::Error) {
-                return Error{featureWhere + ": " + problem};
-            }
-            if (options.invalid == FeatureLoadOptions::Invalid::Skip || original == nullptr ||
-                OGR_G_IsEmpty(original)) {
-                continue;
-            }
-            geometry = OGR_G_MakeValid(original);
-            if (geometry == nullptr) {
-                return Error{featureWhere + ": cannot repair " + problem};
-            }
-        } else {
-            geometry = OGR_G_Clone(original);
+        if (*feature) {
+            normalize(**feature);
+            collection->features_.push_back(std::move(**feature));
         }
-        struct DestroyGeometry {
-            OGRGeometryH handle;
-            ~DestroyGeometry() { OGR_G_DestroyGeometry(handle); }
-        } destroyGeometry{geometry};
-        if (transform != nullptr && OGR_G_Transform(geometry, transform) != OGRERR_NONE) {
-            return Error{featureWhere + ": cannot reproject to WGS84 (" +
-                         lastGdalError("outside the CRS") + ")"};
-        }
-        Collected parts;
-        collect(geometry, parts);
-        if (!parts.rings.empty()) {
-            feature.kind = GeometryKind::Polygon;
-            feature.parts = std::move(parts.rings);
-        } else if (!parts.lines.empty()) {
-            feature.kind = GeometryKind::Line;
-            feature.parts = std::move(parts.lines);
-        } else {
-            feature.kind = GeometryKind::Point;
-            feature.parts = std::move(parts.points);
-        }
-        if (feature.parts.empty()) {
-            if (options.invalid == FeatureLoadOptions::Invalid::Error) {
-                return Error{featureWhere + ": empty geometry"};
-            }
-            continue;
-        }
-        feature.attributes.resize(static_cast<std::size_t>(fieldCount));
-        feature.attributeSet.resize(static_cast<std::size_t>(fieldCount), false);
-        for (int i = 0; i < fieldCount; ++i) {
-            if (OGR_F_IsFieldSetAndNotNull(handle, i)) {
-                feature.attributes[std::size_t(i)] = OGR_F_GetFieldAsString(handle, i);
-                feature.attributeSet[std::size_t(i)] = true;
-            }
-        }
-        normalize(feature);
-        collection->features_.push_back(std::move(feature));
     }
     if (CPLGetLastErrorType() >= CE_Failure) {
         return Error{where + ": reading failed (" + lastGdalError("read error") + ")"};

@@ -266,5 +266,149 @@ TEST(PlodFile, CorruptFilesGiveExactErrors) {
               "cannot open /nonexistent/tree.plod: No such file or directory");
 }
 
+// The writer and the reader run one field list per record, so a round trip cannot see a
+// field moved or dropped on both sides: this pins every field to its offset in the
+// tables of docs/formats.md, reading the encoded bytes independently.
+class EncodedFile {
+public:
+    explicit EncodedFile(const PlantLod& lod) : bytes_(encodePlod(lod)) {
+        Result<PlantLod> decoded = decodePlod(bytes_, "layout.plod", &info_);
+        EXPECT_TRUE(decoded.ok());
+    }
+    std::uint32_t u32(std::size_t at) const {
+        std::uint32_t value = 0;
+        for (int i = 0; i < 4; ++i) {
+            value |= static_cast<std::uint32_t>(bytes_.at(at + i)) << (8 * i);
+        }
+        return value;
+    }
+    std::uint64_t u64(std::size_t at) const { return u32(at) | std::uint64_t{u32(at + 4)} << 32; }
+    float f32(std::size_t at) const {
+        const std::uint32_t bits = u32(at);
+        float value;
+        std::memcpy(&value, &bits, 4);
+        return value;
+    }
+    // Byte offset of element `index` of the section `tag`, and its stride.
+    std::size_t element(const std::string& tag, std::size_t index, std::uint32_t stride) const {
+        for (const PlodSectionInfo& s : info_.sections) {
+            if (s.tag == tag) {
+                EXPECT_EQ(s.stride, stride) << tag;
+                return static_cast<std::size_t>(s.offset) + index * stride;
+            }
+        }
+        ADD_FAILURE() << "no section " << tag;
+        return 0;
+    }
+
+private:
+    std::vector<std::uint8_t> bytes_;
+    PlodFileInfo info_;
+};
+
+TEST(PlodFile, RecordLayoutsFollowTheFormatDocument) {
+    PlantLod lod = sampleLodWithBillboards();
+    LodEllipsoid& e = lod.ellipsoids[1];
+    e.center = {1.5f, 2.5f, 3.5f};
+    e.weight = 4.5f;
+    e.axes[0] = {0.0f, 1.0f, 0.0f};
+    e.axes[1] = {0.0f, 0.0f, 1.0f};
+    e.axes[2] = {1.0f, 0.0f, 0.0f};
+    e.radii = {5.5f, 6.5f, 7.5f};
+    e.color = {0.125f, 0.25f, 0.375f};
+    e.ambientOcclusion = 0.625f;
+    e.noiseLevel = 8.5f;
+    e.alphaThreshold = 0.875f;
+    LodLine& l = lod.lines[2];
+    l.start = {1.25f, 2.25f, 3.25f};
+    l.startRadius = 0.0625f;
+    l.end = {4.25f, 5.25f, 6.25f};
+    l.endRadius = 0.03125f;
+    l.color = {0.5f, 0.75f, 1.0f};
+    l.ambientOcclusion = 0.375f;
+    l.weight = 9.5f;
+    const EncodedFile file(lod);
+
+    // Header.
+    EXPECT_EQ(file.u32(8), 1u);
+    EXPECT_EQ(file.u32(12), 64u);
+    EXPECT_EQ(file.u32(16), 7u);
+    EXPECT_EQ(file.u32(20), 0u);
+    EXPECT_EQ(file.f32(32), -1.5f);
+    EXPECT_EQ(file.f32(36), -2.0f);
+    EXPECT_EQ(file.f32(48), 2.0f);
+    EXPECT_EQ(file.f32(52), 7.25f);
+    // Section table: tag, version, offset, size, count, stride.
+    EXPECT_EQ(file.u32(64 + 32 + 4), 1u);
+    const std::size_t levl = file.element("LEVL", 0, 32);
+    EXPECT_EQ(file.u64(64 + 32 + 8), levl);
+    EXPECT_EQ(file.u64(64 + 32 + 16), 3u * 32u);
+    EXPECT_EQ(file.u32(64 + 32 + 24), 3u);
+    EXPECT_EQ(file.u32(64 + 32 + 28), 32u);
+
+    // LEVL (level 1 of sampleLod).
+    const std::size_t level = file.element("LEVL", 1, 32);
+    EXPECT_EQ(file.f32(level + 0), lod.levels[1].errorMinimum);
+    EXPECT_EQ(file.f32(level + 4), lod.levels[1].errorMaximum);
+    EXPECT_EQ(file.u32(level + 8), 2u);
+    EXPECT_EQ(file.u32(level + 12), 4u);
+    EXPECT_EQ(file.f32(level + 16), lod.levels[1].imageError);
+    EXPECT_EQ(file.f32(level + 20), lod.levels[1].alphaThreshold);
+    EXPECT_EQ(file.f32(level + 24), lod.levels[1].primitiveScale);
+    EXPECT_EQ(file.u32(level + 28), 0u);
+
+    // ELLI.
+    const std::size_t ellipsoid = file.element("ELLI", 1, 112);
+    const float expected[] = {1.5f,   2.5f,  3.5f,   4.5f,   0.0f, 1.0f,  0.0f, 5.5f,
+                              0.0f,   0.0f,  1.0f,   6.5f,   1.0f, 0.0f,  0.0f, 7.5f,
+                              0.125f, 0.25f, 0.375f, 0.625f, 8.5f, 0.875f};
+    for (std::size_t i = 0; i < std::size(expected); ++i) {
+        EXPECT_EQ(file.f32(ellipsoid + 4 * i), expected[i]) << "ELLI offset " << 4 * i;
+    }
+    EXPECT_EQ(file.f32(ellipsoid + 88), e.errorMinimum);
+    EXPECT_EQ(file.f32(ellipsoid + 92), e.errorMaximum);
+    EXPECT_EQ(file.u32(ellipsoid + 96), e.level);
+    for (std::size_t at : {100u, 104u, 108u}) {
+        EXPECT_EQ(file.u32(ellipsoid + at), 0u);
+    }
+
+    // LINE.
+    const std::size_t line = file.element("LINE", 2, 64);
+    const float lineExpected[] = {1.25f,    2.25f, 3.25f, 0.0625f, 4.25f,  5.25f, 6.25f,
+                                  0.03125f, 0.5f,  0.75f, 1.0f,    0.375f, 9.5f};
+    for (std::size_t i = 0; i < std::size(lineExpected); ++i) {
+        EXPECT_EQ(file.f32(line + 4 * i), lineExpected[i]) << "LINE offset " << 4 * i;
+    }
+    EXPECT_EQ(file.f32(line + 52), l.errorMinimum);
+    EXPECT_EQ(file.f32(line + 56), l.errorMaximum);
+    EXPECT_EQ(file.u32(line + 60), 0u);
+
+    // BBCL (level 1: quads 3 … 4, a 4 x 3 atlas after level 0's 60 bytes, aligned).
+    const std::size_t bbcl = file.element("BBCL", 1, 32);
+    EXPECT_EQ(file.f32(bbcl + 0), lod.billboards.levels[1].epsilon);
+    EXPECT_EQ(file.f32(bbcl + 4), lod.billboards.levels[1].imageError);
+    EXPECT_EQ(file.u32(bbcl + 8), 3u);
+    EXPECT_EQ(file.u32(bbcl + 12), 2u);
+    EXPECT_EQ(file.u32(bbcl + 16), 4u);
+    EXPECT_EQ(file.u32(bbcl + 20), 3u);
+    EXPECT_EQ(file.u64(bbcl + 24), 64u);
+
+    // BBCQ (quad 1 of level 0: a branch, not cardboard; quad 2: cardboard leaves).
+    const std::size_t quad = file.element("BBCQ", 1, 96);
+    const BillboardQuad& q = lod.billboards.levels[0].quads[1];
+    for (int c = 0; c < 4; ++c) {
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_EQ(file.f32(quad + 12 * c + 4 * k), q.corners[c][k]);
+        }
+        EXPECT_EQ(file.f32(quad + 48 + 8 * c), q.atlasUvs[c].x);
+        EXPECT_EQ(file.f32(quad + 48 + 8 * c + 4), q.atlasUvs[c].y);
+    }
+    EXPECT_EQ(file.f32(quad + 80), 0.0f);
+    EXPECT_EQ(file.f32(quad + 84), 1.0f);
+    EXPECT_EQ(file.f32(quad + 88), 0.0f);
+    EXPECT_EQ(file.u32(quad + 92), 1u);
+    EXPECT_EQ(file.u32(file.element("BBCQ", 2, 96) + 92), 2u);
+}
+
 }  // namespace
 }  // namespace sylva

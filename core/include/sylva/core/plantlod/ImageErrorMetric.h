@@ -28,4 +28,8 @@ std::vector<double> multiScaleSquaredErrorsDirect(std::span<const float> sample,
 // Mean over levels of sqrt(level error).
 double multiScaleRmse(const std::vector<double>& levelSquaredErrors);
 
+// Level by level, the mean of the level errors of several views (each view's list from
+// multiScaleSquaredErrors, all of one length; at least one view).
+std::vector<double> meanOverViews(const std::vector<std::vector<double>>& perView);
+
 }  // namespace sylva

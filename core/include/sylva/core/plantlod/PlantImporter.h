@@ -3,18 +3,20 @@
 // system ... or reconstructed from the source model").
 //
 // Formats: glTF 2.0 (.gltf with embedded or external buffers and images, .glb) through
-// tinygltf, and Wavefront OBJ with its .mtl (Kd, d/Tr, map_Kd, map_d) through a small
-// reader of our own (OpenMesh 9.0's OBJ reader knows map_Kd but not map_d, builds a
-// half-edge mesh that rejects non-manifold leaf geometry, and reports bad indices only
-// to its log stream, so located error messages would be impossible).
+// tinygltf (GltfPlantReader, GltfAccessors, GltfSkeleton), and Wavefront OBJ with its .mtl
+// (Kd, d/Tr, map_Kd, map_d) through a small reader of our own (ObjPlantReader, MtlReader;
+// OpenMesh 9.0's OBJ reader knows map_Kd but not map_d, builds a half-edge mesh that
+// rejects non-manifold leaf geometry, and reports bad indices only to its log stream, so
+// located error messages would be impossible). Both hand their meshes to the common rest
+// of the import (ImportedPlant: the rules below, normals, skeleton).
 //
 // Frames: both formats are taken as +Y up (glTF by specification, OBJ by the common
 // convention) and converted to the model frame, +Z up: file (x, y, z) → (x, −z, y).
 // Node transforms are applied. Lengths are taken as metres.
 //
 // Leaves vs branches, first rule that applies per mesh (docs/plants.md):
-//   1. the sidecar `<model stem>.plant.json` next to the file: {"parts": {NAME: "leaf" |
-//      "branch"}}, NAME matching a material, mesh or node name;
+//   1. the sidecar `<model stem>.plant.json` next to the file (PlantSidecar): {"parts":
+//      {NAME: "leaf" | "branch"}}, NAME matching a material, mesh or node name;
 //   2. an alpha-masked or blended material, or a base texture with alpha < 0.5 somewhere → leaf;
 //   3. a material, mesh or node name containing leaf, leaves, needle, foliage, frond,
 //      blatt, laub, nadel, feuille → leaf;

@@ -112,9 +112,38 @@ public:
 private:
     PlantsSource(std::string name, const Source* elevation, const Source* density,
                  const FeatureSource* features, PlantsParameters parameters);
-    struct Window;
+    struct Window;       // the bounds asked for, and the tile that owns the result
+    class InputTiles;    // elevation and density tiles at the sample level, fetched once
+    struct PointFields;  // the attribute columns of point features
+    struct RowCells;     // one row of the global scattering grid
     Result<std::vector<PlantInstance>> generate(const TileKey& key, const Window& window,
                                                 TileProvider& provider) const;
+    // Point features: one instance per point the window keeps.
+    Status placePoints(const std::vector<FeatureHit>& hits, const FeatureCollection& features,
+                       const TileKey& key, const Window& window, InputTiles& inputs,
+                       std::vector<PlantInstance>& out) const;
+    Result<PointFields> pointFields(const FeatureCollection& features) const;
+    Result<PlantInstance> pointInstance(const Feature& feature, std::size_t index,
+                                        const PointFields& fields, const std::string& where) const;
+    Result<std::uint32_t> pointSpecies(const Feature& feature, std::size_t field,
+                                       const std::string& where) const;
+    Result<double> pointNumber(const Feature& feature, std::size_t field,
+                               const std::string& attribute, const std::string& where) const;
+    // Grid scattering over the density mask and/or the polygons.
+    Status scatter(const std::vector<FeatureHit>& polygons, const TileKey& key,
+                   const Window& window, InputTiles& inputs, std::vector<PlantInstance>& out) const;
+    Status scatterRow(int row, const std::vector<FeatureHit>& polygons, const TileKey& key,
+                      const Window& window, InputTiles& inputs,
+                      std::vector<PlantInstance>& out) const;
+    std::vector<std::pair<double, double>> rowIntervals(const std::vector<FeatureHit>& polygons,
+                                                        const Window& window, double south,
+                                                        double north) const;
+    Status scatterCell(const RowCells& cells, std::int64_t cell,
+                       const std::vector<FeatureHit>& polygons, const TileKey& key,
+                       const Window& window, InputTiles& inputs,
+                       std::vector<PlantInstance>& out) const;
+    // The plant model of each species from the block's `models`.
+    Status attachModels(const SourceBuildContext& context);
 
     const Source* elevation_;
     const Source* density_;
