@@ -16,8 +16,9 @@ void GraphChecker::findCycles(const std::vector<Block>& sources) {
     std::map<std::string, std::size_t> order;
     for (const Block& source : sources) {
         order.emplace(source.name, order.size());
+        std::vector<Edge>& edges = graph[source.name];
         for (const Attribute& attribute : source.attributes) {
-            collectEdges(source.name, attribute.value, graph[source.name]);
+            collectEdges(source.name, attribute.value, edges);
         }
     }
     // Depth first; meeting a source still on the path (colour 1) closes a cycle.

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <string>
@@ -71,7 +72,8 @@ class NameScope {
 public:
     NameScope(const SchemaRegistry& schema, std::vector<Diagnostic>& diagnostics);
 
-    // Declares every statement of every unit, in order.
+    // Declares every statement of every unit, in order. Declarations do not move
+    // afterwards: pointers to them stay valid for the NameScope's life.
     void declareAll(const std::vector<ParsedUnit>& units);
     // Replaces the values of the params -D names (E0207 for names that are no param).
     void applyDefines(const std::vector<DefineNode>& defines);
@@ -100,7 +102,9 @@ private:
     void declare(const Statement& statement, const std::string& scope);
     void declareParam(const ParamNode& param, const std::string& scope);
     void declareBlock(const BlockNode& block, const std::string& scope);
+    // A block keyword of the schema (E0203 otherwise).
     bool isKeyword(const BlockNode& block);
+    // `extends` and `override` belong to scenarios only (E0214).
     void checkScenarioSyntax(const BlockNode& block);
     // The schema of a source block; false when the block cannot be declared at all.
     bool sourceSchema(const BlockNode& block, const KindSchema*& kindSchema);

@@ -142,7 +142,7 @@ KindSchema pathBlock() {
             {interpolate, keys, fps, fov}};
 }
 
-// The language-level attributes of views: times and paths (once, even if registered twice).
+// The language-level attributes of views: times and paths (unless it has them already).
 void addViewsAttributes(KindSchema& views) {
     if (!views.find("times")) {
         AttributeSchema times =

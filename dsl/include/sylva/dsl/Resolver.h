@@ -16,7 +16,7 @@
 #include "sylva/core/model/Schema.h"
 #include "sylva/dsl/Ast.h"
 #include "sylva/dsl/Diagnostic.h"
-#include "sylva/dsl/QuantityText.h"
+#include "sylva/dsl/QuantityText.h"  // formatQuantity, declared here before
 
 namespace sylva::dsl {
 
@@ -53,8 +53,9 @@ class GraphChecker;
 struct Declaration;
 struct Patch;
 
-// The orchestrator of the checks; its parts live in dsl/ (NameScope, ExpressionEvaluator
-// with BuiltinFunctions, ValueChecker, BlockChecker, GraphChecker).
+// The orchestrator of the checks. Its parts (private headers in dsl/: NameScope,
+// ExpressionEvaluator with BuiltinFunctions, ValueChecker, BlockChecker, GraphChecker)
+// are made afresh by each resolve().
 class Resolver {
 public:
     Resolver(const SchemaRegistry& schema, std::vector<Diagnostic>& diagnostics);
@@ -82,8 +83,9 @@ private:
     void acceptProjectCrs(const Block& project);
     std::vector<Declaration*> resolveScenarios(ProjectModel& model);
     void resolveScenario(Declaration& scenario);
-    // The block a scenario `extends` (resolved first); nullptr when it extends nothing.
-    // False when the parent has errors and the scenario is not checked.
+    // Sets `inherited` to the block of the scenario `extends` names (resolved first;
+    // stays nullptr without `extends` or after an error reported here). False when the
+    // parent has errors of its own: the scenario is then not checked.
     bool resolveParent(Declaration& scenario, const Block*& inherited);
     void collectOverrides(Declaration& scenario);
     void addOmittedBlocks(ProjectModel& model, const std::filesystem::path& path);
@@ -106,5 +108,4 @@ private:
     std::vector<std::unique_ptr<BlockNode>> implicit_;  // project/render the files omit
 };
 
-// formatQuantity() now lives in QuantityText.h (included for the callers that found it here).
 }  // namespace sylva::dsl
