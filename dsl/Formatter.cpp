@@ -1,6 +1,8 @@
 #include "sylva/dsl/Formatter.h"
 
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "sylva/dsl/Lexer.h"
 #include "sylva/dsl/Parser.h"
@@ -50,6 +52,69 @@ std::string raw(std::string_view text, const Token& token) {
     return std::string(text.substr(token.offset, token.location.length));
 }
 
+// Lines of tokens: a line is the tokens between two Newline tokens.
+std::vector<std::vector<const Token*>> splitLines(const std::vector<Token>& tokens) {
+    std::vector<std::vector<const Token*>> lines(1);
+    for (const Token& token : tokens) {
+        if (token.kind == TokenKind::EndOfFile) {
+            break;
+        }
+        if (token.kind == TokenKind::Newline) {
+            lines.emplace_back();
+        } else {
+            lines.back().push_back(&token);
+        }
+    }
+    return lines;
+}
+
+// A bracket still open at the end of a line.
+struct Open {
+    TokenKind kind;
+    int indent;  // indentation of the line that opened it
+    int line;
+};
+
+// Indentation: one level inside the innermost bracket still open from an earlier line; a
+// line starting with closers sits at the level of the line that opened them.
+int indentOf(const std::vector<const Token*>& line, const std::vector<Open>& open) {
+    std::size_t depth = open.size();
+    for (const Token* token : line) {
+        if (!isCloser(token->kind) || depth == 0) {
+            break;
+        }
+        --depth;
+    }
+    if (depth < open.size()) {
+        return open[depth].indent;
+    }
+    return open.empty() ? 0 : open.back().indent + 4;
+}
+
+// Whether one space separates `token` from `previous` (after `beforePrevious`).
+bool spaceBetween(const Token* beforePrevious, const Token& previous, const Token& token) {
+    TokenKind p = previous.kind;
+    TokenKind c = token.kind;
+    if (c == TokenKind::Comment) {
+        return true;
+    }
+    if (p == TokenKind::LParen || p == TokenKind::LBracket || p == TokenKind::Dot ||
+        c == TokenKind::RParen || c == TokenKind::RBracket || c == TokenKind::Comma ||
+        c == TokenKind::Semicolon || c == TokenKind::Dot) {
+        return false;
+    }
+    if (c == TokenKind::LParen && p == TokenKind::Identifier) {
+        return false;  // a call
+    }
+    if (c == TokenKind::LBracket && isValueEnd(p) && !token.spaceBefore) {
+        return false;  // an index
+    }
+    if (p == TokenKind::LBrace && c == TokenKind::RBrace) {
+        return false;
+    }
+    return !isUnary(beforePrevious, previous);
+}
+
 }  // namespace
 
 std::optional<std::string> Formatter::format(std::string_view input, const std::string& displayName,
@@ -69,25 +134,8 @@ std::optional<std::string> Formatter::format(std::string_view input, const std::
     Lexer lexer(text, file, diagnostics);
     lexer.keepComments(true);
     std::vector<Token> tokens = lexer.tokenize();
+    const std::vector<std::vector<const Token*>> lines = splitLines(tokens);
 
-    // Split into lines; a line is the tokens between two Newline tokens.
-    std::vector<std::vector<const Token*>> lines(1);
-    for (const Token& token : tokens) {
-        if (token.kind == TokenKind::EndOfFile) {
-            break;
-        }
-        if (token.kind == TokenKind::Newline) {
-            lines.emplace_back();
-        } else {
-            lines.back().push_back(&token);
-        }
-    }
-
-    struct Open {
-        TokenKind kind;
-        int indent;  // indentation of the line that opened it
-        int line;
-    };
     std::vector<Open> open;
     std::string out;
     bool pendingBlank = false;
@@ -97,21 +145,8 @@ std::optional<std::string> Formatter::format(std::string_view input, const std::
             pendingBlank = !out.empty();
             continue;
         }
-        // Indentation: one level inside the innermost bracket still open from an earlier
-        // line; a line starting with closers sits at the level of the line that opened them.
-        int indent = 0;
-        std::size_t depth = open.size();
-        for (const Token* token : line) {
-            if (!isCloser(token->kind) || depth == 0) {
-                break;
-            }
-            --depth;
-        }
-        if (depth < open.size()) {
-            indent = open[depth].indent;
-        } else if (!open.empty()) {
-            indent = open.back().indent + 4;
-        }
+        const int indent = indentOf(line, open);
+        // At most one blank line, and none right after an opening bracket.
         if (pendingBlank && !out.empty() && !isCloser(line.front()->kind)) {
             const bool afterOpener =
                 out.size() >= 2 && (out[out.size() - 2] == '{' || out[out.size() - 2] == '[' ||
@@ -125,33 +160,8 @@ std::optional<std::string> Formatter::format(std::string_view input, const std::
         const Token* previous = nullptr;
         const Token* beforePrevious = nullptr;
         for (const Token* token : line) {
-            if (previous) {
-                bool space = true;
-                TokenKind p = previous->kind;
-                TokenKind c = token->kind;
-                if (p == TokenKind::LParen || p == TokenKind::LBracket || p == TokenKind::Dot ||
-                    c == TokenKind::RParen || c == TokenKind::RBracket || c == TokenKind::Comma ||
-                    c == TokenKind::Semicolon || c == TokenKind::Dot) {
-                    space = false;
-                }
-                if (c == TokenKind::LParen && p == TokenKind::Identifier) {
-                    space = false;  // a call
-                }
-                if (c == TokenKind::LBracket && isValueEnd(p) && !token->spaceBefore) {
-                    space = false;  // an index
-                }
-                if (p == TokenKind::LBrace && c == TokenKind::RBrace) {
-                    space = false;
-                }
-                if (isUnary(beforePrevious, *previous)) {
-                    space = false;
-                }
-                if (c == TokenKind::Comment) {
-                    space = true;
-                }
-                if (space) {
-                    text_line += ' ';
-                }
+            if (previous && spaceBetween(beforePrevious, *previous, *token)) {
+                text_line += ' ';
             }
             text_line += raw(text, *token);
             if (isOpener(token->kind)) {

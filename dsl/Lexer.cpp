@@ -49,6 +49,31 @@ constexpr Unit kUnits[] = {
     {"h", 3600.0, Dimension::Time},
 };
 
+// Operators and delimiters; the two-character forms come first, so `==` wins over `=`.
+// A lone '&' or '|' is no token (the operators are '&&' and '||').
+struct Punctuation {
+    char first;
+    char second;  // '\0' for one-character tokens
+    TokenKind kind;
+};
+
+constexpr Punctuation kPunctuation[] = {
+    {'=', '=', TokenKind::EqualEqual}, {'!', '=', TokenKind::BangEqual},
+    {'<', '=', TokenKind::LessEqual},  {'>', '=', TokenKind::GreaterEqual},
+    {'&', '&', TokenKind::AndAnd},     {'|', '|', TokenKind::OrOr},
+    {'+', '=', TokenKind::PlusEquals}, {'-', '=', TokenKind::MinusEquals},
+    {'{', '\0', TokenKind::LBrace},    {'}', '\0', TokenKind::RBrace},
+    {'[', '\0', TokenKind::LBracket},  {']', '\0', TokenKind::RBracket},
+    {'(', '\0', TokenKind::LParen},    {')', '\0', TokenKind::RParen},
+    {',', '\0', TokenKind::Comma},     {'=', '\0', TokenKind::Equals},
+    {'!', '\0', TokenKind::Bang},      {'<', '\0', TokenKind::Less},
+    {'>', '\0', TokenKind::Greater},   {'?', '\0', TokenKind::Question},
+    {'%', '\0', TokenKind::Percent},   {'.', '\0', TokenKind::Dot},
+    {':', '\0', TokenKind::Colon},     {';', '\0', TokenKind::Semicolon},
+    {'+', '\0', TokenKind::Plus},      {'-', '\0', TokenKind::Minus},
+    {'*', '\0', TokenKind::Star},      {'/', '\0', TokenKind::Slash},
+};
+
 std::size_t utf8Length(unsigned char lead) {
     if (lead < 0x80) {
         return 1;
@@ -114,194 +139,127 @@ std::vector<Token> Lexer::tokenize() {
         pos_ = 3;
     }
     while (pos_ < text_.size()) {
-        char c = text_[pos_];
-        char next = pos_ + 1 < text_.size() ? text_[pos_ + 1] : '\0';
-        if (c == '\n') {
-            push(TokenKind::Newline, pos_, 1);
-            ++pos_;
-            ++line_;
-            lineStart_ = pos_;
-        } else if (c == ' ' || c == '\t' || c == '\r') {
-            ++pos_;
-        } else if (c == '#') {
-            if (colourContext() && isHex(next)) {
-                lexColour();
-            } else {
-                std::size_t start = pos_;
-                while (pos_ < text_.size() && text_[pos_] != '\n') {
-                    ++pos_;
-                }
-                if (keepComments_) {
-                    push(TokenKind::Comment, start, pos_ - start);
-                }
-            }
-        } else if (c == '/' && next == '/') {
-            std::size_t start = pos_;
-            while (pos_ < text_.size() && text_[pos_] != '\n') {
-                ++pos_;
-            }
-            if (keepComments_) {
-                push(TokenKind::Comment, start, pos_ - start);
-            }
-        } else if (c == '/' && next == '*') {
-            std::size_t start = pos_;
-            std::uint32_t startLine = line_;
-            std::size_t startLineStart = lineStart_;
-            skipBlockComment();
-            if (keepComments_) {
-                Token token;
-                token.kind = TokenKind::Comment;
-                token.text = std::string(text_.substr(start, pos_ - start));
-                token.location.file = file_;
-                token.location.line = startLine;
-                token.location.column = static_cast<std::uint32_t>(start - startLineStart + 1);
-                token.location.length = 2;
-                token.offset = start;
-                token.spaceBefore = start != lastEnd_ || start == startLineStart;
-                lastEnd_ = pos_;
-                tokens_.push_back(std::move(token));
-            }
-        } else if (c == '/' && next == '-') {
-            push(TokenKind::SlashDash, pos_, 2);
-            pos_ += 2;
-        } else if (isDigit(c)) {
-            if (!lexDateTime()) {
-                lexNumber();
-            }
-        } else if (isIdentStart(c)) {
-            std::size_t start = pos_;
-            while (pos_ < text_.size() && isIdentChar(text_[pos_])) {
-                ++pos_;
-            }
-            push(TokenKind::Identifier, start, pos_ - start);
-        } else if (c == '@') {
-            std::size_t start = pos_++;
-            if (pos_ >= text_.size() || !isIdentStart(text_[pos_])) {
-                addError(diagnostics_, "E0004", "expected a name after '@'", locationAt(start, 1),
-                         "a reference needs a name: '@height'");
-                continue;
-            }
-            std::size_t nameStart = pos_;
-            while (pos_ < text_.size() && isIdentChar(text_[pos_])) {
-                ++pos_;
-            }
-            std::string name(text_.substr(nameStart, pos_ - nameStart));
-            std::string field;
-            // `@ns.name.field`: every dotted part after the first goes into `field`.
-            if (pos_ + 1 < text_.size() && text_[pos_] == '.' && isIdentStart(text_[pos_ + 1])) {
-                std::size_t fieldStart = ++pos_;
-                while (pos_ < text_.size() && (isIdentChar(text_[pos_]) ||
-                                               (text_[pos_] == '.' && pos_ + 1 < text_.size() &&
-                                                isIdentStart(text_[pos_ + 1])))) {
-                    ++pos_;
-                }
-                field = std::string(text_.substr(fieldStart, pos_ - fieldStart));
-            }
-            push(TokenKind::Reference, start, pos_ - start);
-            tokens_.back().text = std::move(name);
-            tokens_.back().field = std::move(field);
-        } else if (c == '"') {
-            lexString();
-        } else {
-            TokenKind kind = TokenKind::EndOfFile;
-            switch (c) {
-                case '{':
-                    kind = TokenKind::LBrace;
-                    break;
-                case '}':
-                    kind = TokenKind::RBrace;
-                    break;
-                case '[':
-                    kind = TokenKind::LBracket;
-                    break;
-                case ']':
-                    kind = TokenKind::RBracket;
-                    break;
-                case '(':
-                    kind = TokenKind::LParen;
-                    break;
-                case ')':
-                    kind = TokenKind::RParen;
-                    break;
-                case ',':
-                    kind = TokenKind::Comma;
-                    break;
-                case '=':
-                    kind = next == '=' ? TokenKind::EqualEqual : TokenKind::Equals;
-                    break;
-                case '!':
-                    kind = next == '=' ? TokenKind::BangEqual : TokenKind::Bang;
-                    break;
-                case '<':
-                    kind = next == '=' ? TokenKind::LessEqual : TokenKind::Less;
-                    break;
-                case '>':
-                    kind = next == '=' ? TokenKind::GreaterEqual : TokenKind::Greater;
-                    break;
-                case '&':
-                    kind = next == '&' ? TokenKind::AndAnd : TokenKind::EndOfFile;
-                    break;
-                case '|':
-                    kind = next == '|' ? TokenKind::OrOr : TokenKind::EndOfFile;
-                    break;
-                case '?':
-                    kind = TokenKind::Question;
-                    break;
-                case '%':
-                    kind = TokenKind::Percent;
-                    break;
-                case '.':
-                    kind = TokenKind::Dot;
-                    break;
-                case ':':
-                    kind = TokenKind::Colon;
-                    break;
-                case ';':
-                    kind = TokenKind::Semicolon;
-                    break;
-                case '+':
-                    kind = next == '=' ? TokenKind::PlusEquals : TokenKind::Plus;
-                    break;
-                case '-':
-                    kind = next == '=' ? TokenKind::MinusEquals : TokenKind::Minus;
-                    break;
-                case '*':
-                    kind = TokenKind::Star;
-                    break;
-                case '/':
-                    kind = TokenKind::Slash;
-                    break;
-                default:
-                    break;
-            }
-            if (kind == TokenKind::EndOfFile) {
-                lexUnexpected();
-            } else {
-                std::size_t length = 1;
-                switch (kind) {
-                    case TokenKind::EqualEqual:
-                    case TokenKind::BangEqual:
-                    case TokenKind::LessEqual:
-                    case TokenKind::GreaterEqual:
-                    case TokenKind::AndAnd:
-                    case TokenKind::OrOr:
-                    case TokenKind::PlusEquals:
-                    case TokenKind::MinusEquals:
-                        length = 2;
-                        break;
-                    default:
-                        break;
-                }
-                push(kind, pos_, length);
-                pos_ += length;
-            }
-        }
+        lexToken();
     }
     Token end;
     end.kind = TokenKind::EndOfFile;
     end.location = locationAt(pos_, 0);
     tokens_.push_back(std::move(end));
     return std::move(tokens_);
+}
+
+void Lexer::lexToken() {
+    char c = text_[pos_];
+    char next = pos_ + 1 < text_.size() ? text_[pos_ + 1] : '\0';
+    if (c == '\n') {
+        push(TokenKind::Newline, pos_, 1);
+        ++pos_;
+        ++line_;
+        lineStart_ = pos_;
+    } else if (c == ' ' || c == '\t' || c == '\r') {
+        ++pos_;
+    } else if (c == '#') {
+        if (colourContext() && isHex(next)) {
+            lexColour();
+        } else {
+            lexLineComment();
+        }
+    } else if (c == '/' && next == '/') {
+        lexLineComment();
+    } else if (c == '/' && next == '*') {
+        lexBlockComment();
+    } else if (c == '/' && next == '-') {
+        push(TokenKind::SlashDash, pos_, 2);
+        pos_ += 2;
+    } else if (isDigit(c)) {
+        if (!lexDateTime()) {
+            lexNumber();
+        }
+    } else if (isIdentStart(c)) {
+        std::size_t start = pos_;
+        while (pos_ < text_.size() && isIdentChar(text_[pos_])) {
+            ++pos_;
+        }
+        push(TokenKind::Identifier, start, pos_ - start);
+    } else if (c == '@') {
+        lexReference();
+    } else if (c == '"') {
+        lexString();
+    } else {
+        lexPunctuation(c, next);
+    }
+}
+
+void Lexer::lexLineComment() {
+    std::size_t start = pos_;
+    while (pos_ < text_.size() && text_[pos_] != '\n') {
+        ++pos_;
+    }
+    if (keepComments_) {
+        push(TokenKind::Comment, start, pos_ - start);
+    }
+}
+
+void Lexer::lexBlockComment() {
+    std::size_t start = pos_;
+    std::uint32_t startLine = line_;
+    std::size_t startLineStart = lineStart_;
+    skipBlockComment();
+    if (!keepComments_) {
+        return;
+    }
+    // Located at its first line (it may span several), two characters long.
+    Token token;
+    token.kind = TokenKind::Comment;
+    token.text = std::string(text_.substr(start, pos_ - start));
+    token.location.file = file_;
+    token.location.line = startLine;
+    token.location.column = static_cast<std::uint32_t>(start - startLineStart + 1);
+    token.location.length = 2;
+    token.offset = start;
+    token.spaceBefore = start != lastEnd_ || start == startLineStart;
+    lastEnd_ = pos_;
+    tokens_.push_back(std::move(token));
+}
+
+void Lexer::lexReference() {
+    std::size_t start = pos_++;
+    if (pos_ >= text_.size() || !isIdentStart(text_[pos_])) {
+        addError(diagnostics_, "E0004", "expected a name after '@'", locationAt(start, 1),
+                 "a reference needs a name: '@height'");
+        return;
+    }
+    std::size_t nameStart = pos_;
+    while (pos_ < text_.size() && isIdentChar(text_[pos_])) {
+        ++pos_;
+    }
+    std::string name(text_.substr(nameStart, pos_ - nameStart));
+    std::string field;
+    // `@ns.name.field`: every dotted part after the first goes into `field`.
+    if (pos_ + 1 < text_.size() && text_[pos_] == '.' && isIdentStart(text_[pos_ + 1])) {
+        std::size_t fieldStart = ++pos_;
+        while (pos_ < text_.size() &&
+               (isIdentChar(text_[pos_]) ||
+                (text_[pos_] == '.' && pos_ + 1 < text_.size() && isIdentStart(text_[pos_ + 1])))) {
+            ++pos_;
+        }
+        field = std::string(text_.substr(fieldStart, pos_ - fieldStart));
+    }
+    push(TokenKind::Reference, start, pos_ - start);
+    tokens_.back().text = std::move(name);
+    tokens_.back().field = std::move(field);
+}
+
+void Lexer::lexPunctuation(char c, char next) {
+    for (const Punctuation& punctuation : kPunctuation) {
+        if (punctuation.first == c && (punctuation.second == '\0' || punctuation.second == next)) {
+            const std::size_t length = punctuation.second == '\0' ? 1 : 2;
+            push(punctuation.kind, pos_, length);
+            pos_ += length;
+            return;
+        }
+    }
+    lexUnexpected();
 }
 
 void Lexer::lexUnexpected() {

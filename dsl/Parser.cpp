@@ -20,6 +20,34 @@ ExprPtr makeExpr(Expr::Kind kind, const SourceLocation& location) {
     return expr;
 }
 
+// Binding powers of the infix operators (higher binds tighter) and their Expr::op; the
+// conditional's '?' binds loosest.
+struct BinaryOperator {
+    TokenKind kind;
+    int power;
+    char op;
+};
+
+constexpr BinaryOperator kBinaryOperators[] = {
+    {TokenKind::Question, 1, 0},       {TokenKind::OrOr, 2, '|'},
+    {TokenKind::AndAnd, 3, '&'},       {TokenKind::EqualEqual, 4, 'e'},
+    {TokenKind::BangEqual, 4, 'n'},    {TokenKind::Less, 5, '<'},
+    {TokenKind::LessEqual, 5, 'l'},    {TokenKind::Greater, 5, '>'},
+    {TokenKind::GreaterEqual, 5, 'g'}, {TokenKind::Plus, 10, '+'},
+    {TokenKind::Minus, 10, '-'},       {TokenKind::Star, 20, '*'},
+    {TokenKind::Slash, 20, '/'},       {TokenKind::Percent, 20, '%'},
+};
+
+// The infix operator `kind` is, or nullptr.
+const BinaryOperator* binaryOperator(TokenKind kind) {
+    for (const BinaryOperator& binary : kBinaryOperators) {
+        if (binary.kind == kind) {
+            return &binary;
+        }
+    }
+    return nullptr;
+}
+
 }  // namespace
 
 Parser::Parser(std::vector<Token> tokens, std::vector<Diagnostic>& diagnostics)
@@ -369,102 +397,56 @@ ExprPtr Parser::parseExpression(int minBindingPower) {
         left = parsePostfix(std::move(left));
     }
     while (left) {
-        TokenKind kind = peek().kind;
-        int power = 0;
-        char op = 0;
-        switch (kind) {
-            case TokenKind::Question:
-                power = 1;
-                break;
-            case TokenKind::OrOr:
-                power = 2, op = '|';
-                break;
-            case TokenKind::AndAnd:
-                power = 3, op = '&';
-                break;
-            case TokenKind::EqualEqual:
-                power = 4, op = 'e';
-                break;
-            case TokenKind::BangEqual:
-                power = 4, op = 'n';
-                break;
-            case TokenKind::Less:
-                power = 5, op = '<';
-                break;
-            case TokenKind::LessEqual:
-                power = 5, op = 'l';
-                break;
-            case TokenKind::Greater:
-                power = 5, op = '>';
-                break;
-            case TokenKind::GreaterEqual:
-                power = 5, op = 'g';
-                break;
-            case TokenKind::Plus:
-                power = 10, op = '+';
-                break;
-            case TokenKind::Minus:
-                power = 10, op = '-';
-                break;
-            case TokenKind::Star:
-                power = 20, op = '*';
-                break;
-            case TokenKind::Slash:
-                power = 20, op = '/';
-                break;
-            case TokenKind::Percent:
-                power = 20, op = '%';
-                break;
-            default:
-                break;
-        }
-        if (power == 0 || power <= minBindingPower) {
+        const TokenKind kind = peek().kind;
+        const BinaryOperator* binary = binaryOperator(kind);
+        if (!binary || binary->power <= minBindingPower) {
             break;
         }
         advance();
         if (kind == TokenKind::Question) {
-            // `c ? a : b`, right-associative: `a ? b : c ? d : e` nests in the else branch.
-            skipNewlines();
-            ExprPtr then = parseExpression(0);
-            if (!then) {
-                left = nullptr;
-                break;
-            }
-            skipNewlines();
-            if (!at(TokenKind::Colon)) {
-                error("E0101", "expected ':' in conditional, found " + describeToken(peek()),
-                      peek().location, "write 'condition ? then : else'");
-                left = nullptr;
-                break;
-            }
-            advance();
-            skipNewlines();
-            ExprPtr otherwise = parseExpression(0);
-            if (!otherwise) {
-                left = nullptr;
-                break;
-            }
-            auto conditional = makeExpr(Expr::Kind::Conditional,
-                                        spanLocations(left->location, otherwise->location));
-            conditional->children.push_back(std::move(left));
-            conditional->children.push_back(std::move(then));
-            conditional->children.push_back(std::move(otherwise));
-            left = std::move(conditional);
+            left = parseConditional(std::move(left));
             continue;
         }
-        ExprPtr right = parseExpression(power);
+        ExprPtr right = parseExpression(binary->power);
         if (!right) {
             left = nullptr;
             break;
         }
-        auto binary = makeExpr(Expr::Kind::Binary, spanLocations(left->location, right->location));
-        binary->op = op;
-        binary->children.push_back(std::move(left));
-        binary->children.push_back(std::move(right));
-        left = std::move(binary);
+        auto node = makeExpr(Expr::Kind::Binary, spanLocations(left->location, right->location));
+        node->op = binary->op;
+        node->children.push_back(std::move(left));
+        node->children.push_back(std::move(right));
+        left = std::move(node);
     }
     --depth_;
     return left;
+}
+
+// `c ? a : b` after the '?', right-associative: `a ? b : c ? d : e` nests in the else branch.
+ExprPtr Parser::parseConditional(ExprPtr condition) {
+    skipNewlines();
+    ExprPtr then = parseExpression(0);
+    if (!then) {
+        return nullptr;
+    }
+    skipNewlines();
+    if (!at(TokenKind::Colon)) {
+        error("E0101", "expected ':' in conditional, found " + describeToken(peek()),
+              peek().location, "write 'condition ? then : else'");
+        return nullptr;
+    }
+    advance();
+    skipNewlines();
+    ExprPtr otherwise = parseExpression(0);
+    if (!otherwise) {
+        return nullptr;
+    }
+    auto conditional =
+        makeExpr(Expr::Kind::Conditional, spanLocations(condition->location, otherwise->location));
+    conditional->children.push_back(std::move(condition));
+    conditional->children.push_back(std::move(then));
+    conditional->children.push_back(std::move(otherwise));
+    return conditional;
 }
 
 ExprPtr Parser::parsePrefix() {

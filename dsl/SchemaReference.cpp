@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "sylva/dsl/ModelHash.h"
-#include "sylva/dsl/Resolver.h"
+#include "sylva/dsl/QuantityText.h"
 
 namespace sylva::dsl {
 

@@ -145,81 +145,115 @@ Result<Camera> CameraPath::sample(double time, const Camera::TerrainHeight& terr
     const CameraPathKey& b = keys_[segment + 1];
     const double s = std::clamp((time - a.time) / (b.time - a.time), 0.0, 1.0);
 
-    auto terrainAt = [&](double latitude, double longitude) -> Result<double> {
+    Result<Position> position = interpolatePosition(segment, s, time, terrainHeight);
+    if (!position) {
+        return position.error();
+    }
+    Camera camera;
+    camera.verticalFov = verticalFov_;
+    const glm::dvec3& direction = position.value().direction;
+    camera.geodetic.latitude = std::asin(std::clamp(direction.z, -1.0, 1.0));
+    camera.geodetic.longitude = std::atan2(direction.y, direction.x);
+    if (Status placed = placeHeight(camera, position.value().height, time, terrainHeight);
+        !placed) {
+        return placed.error();
+    }
+    camera.position = Ellipsoid::toEcef(camera.geodetic);
+
+    const bool lookAtBoth = a.lookAt && b.lookAt && interpolation_ != PathInterpolation::Step;
+    if (lookAtBoth) {
+        if (Status looking = lookAtInterpolatedTarget(camera, a, b, s, terrainHeight); !looking) {
+            return looking.error();
+        }
+        return camera;
+    }
+    camera.axes = interpolatedAxes(camera.geodetic, a, b, s);
+    return camera;
+}
+
+Result<double> CameraPath::keyHeight(const CameraPathKey& key,
+                                     const Camera::TerrainHeight& terrainHeight) const {
+    if (heightsAboveTerrain_) {
+        return *key.eyeHeight;
+    }
+    if (key.eyeHeight) {
         if (!terrainHeight) {
             return Error{"path '" + name_ + "': no terrain to measure eye_height from"};
         }
-        return terrainHeight(latitude, longitude);
-    };
-    // The height a key interpolates: above the terrain or above the ellipsoid.
-    auto keyHeight = [&](const CameraPathKey& key) -> Result<double> {
-        if (heightsAboveTerrain_) {
-            return *key.eyeHeight;
+        Result<double> ground = terrainHeight(key.latitude, key.longitude);
+        if (!ground) {
+            return ground.error();
         }
-        if (key.eyeHeight) {
-            Result<double> ground = terrainAt(key.latitude, key.longitude);
-            if (!ground) {
-                return ground.error();
-            }
-            return ground.value() + *key.eyeHeight;
-        }
-        return *key.height;
-    };
+        return ground.value() + *key.eyeHeight;
+    }
+    return *key.height;
+}
 
-    glm::dvec3 direction;
-    double height = 0;
+Result<CameraPath::Position> CameraPath::interpolatePosition(
+    std::size_t segment, double s, double time, const Camera::TerrainHeight& terrainHeight) const {
+    const CameraPathKey& a = keys_[segment];
+    const CameraPathKey& b = keys_[segment + 1];
+    Position position;
     if (interpolation_ == PathInterpolation::Step) {
         const CameraPathKey& key = s < 1.0 ? a : b;
-        direction = unitVector(key.latitude, key.longitude);
-        Result<double> h = keyHeight(key);
+        position.direction = unitVector(key.latitude, key.longitude);
+        Result<double> h = keyHeight(key, terrainHeight);
         if (!h) {
             return h.error();
         }
-        height = h.value();
-    } else if (interpolation_ == PathInterpolation::Linear) {
-        direction =
+        position.height = h.value();
+        return position;
+    }
+    if (interpolation_ == PathInterpolation::Linear) {
+        position.direction =
             slerpUnit(unitVector(a.latitude, a.longitude), unitVector(b.latitude, b.longitude), s);
-        Result<double> ha = keyHeight(a);
-        Result<double> hb = keyHeight(b);
+        Result<double> ha = keyHeight(a, terrainHeight);
+        Result<double> hb = keyHeight(b, terrainHeight);
         if (!ha || !hb) {
             return !ha ? ha.error() : hb.error();
         }
-        height = ha.value() + (hb.value() - ha.value()) * s;
-    } else {
-        // Catmull–Rom tangents from the neighbouring keys (one-sided at the ends).
-        const std::size_t i0 = segment == 0 ? 0 : segment - 1;
-        const std::size_t i3 = std::min(segment + 2, keys_.size() - 1);
-        const CameraPathKey* k[4] = {&keys_[i0], &a, &b, &keys_[i3]};
-        glm::dvec3 p[4];
-        double h[4];
-        for (int i = 0; i < 4; ++i) {
-            p[i] = unitVector(k[i]->latitude, k[i]->longitude);
-            Result<double> keyH = keyHeight(*k[i]);
-            if (!keyH) {
-                return keyH.error();
-            }
-            h[i] = keyH.value();
-        }
-        // Neighbours on the far side of the globe from this segment would bend the
-        // tangent through the Earth; projecting onto the tangent plane keeps it on the
-        // surface.
-        auto tangent = [&](int before, int after, const glm::dvec3& at) {
-            const double dt = k[after]->time - k[before]->time;
-            glm::dvec3 m = (p[after] - p[before]) / dt;
-            return m - glm::dot(m, at) * at;
-        };
-        const glm::dvec3 m1 = tangent(0, 2, p[1]);
-        const glm::dvec3 m2 = tangent(1, 3, p[2]);
-        direction = glm::normalize(hermite(p[1], p[2], m1, m2, a.time, b.time, time));
-        const double dh1 = (h[2] - h[0]) / (k[2]->time - k[0]->time);
-        const double dh2 = (h[3] - h[1]) / (k[3]->time - k[1]->time);
-        height = hermite(h[1], h[2], dh1, dh2, a.time, b.time, time);
+        position.height = ha.value() + (hb.value() - ha.value()) * s;
+        return position;
     }
+    return catmullRom(segment, time, terrainHeight);
+}
 
-    Camera camera;
-    camera.verticalFov = verticalFov_;
-    camera.geodetic.latitude = std::asin(std::clamp(direction.z, -1.0, 1.0));
-    camera.geodetic.longitude = std::atan2(direction.y, direction.x);
+Result<CameraPath::Position> CameraPath::catmullRom(
+    std::size_t segment, double time, const Camera::TerrainHeight& terrainHeight) const {
+    // Catmull–Rom tangents from the neighbouring keys (one-sided at the ends).
+    const std::size_t i0 = segment == 0 ? 0 : segment - 1;
+    const std::size_t i3 = std::min(segment + 2, keys_.size() - 1);
+    const CameraPathKey* k[4] = {&keys_[i0], &keys_[segment], &keys_[segment + 1], &keys_[i3]};
+    glm::dvec3 p[4];
+    double h[4];
+    for (int i = 0; i < 4; ++i) {
+        p[i] = unitVector(k[i]->latitude, k[i]->longitude);
+        Result<double> keyH = keyHeight(*k[i], terrainHeight);
+        if (!keyH) {
+            return keyH.error();
+        }
+        h[i] = keyH.value();
+    }
+    // Neighbours on the far side of the globe from this segment would bend the
+    // tangent through the Earth; projecting onto the tangent plane keeps it on the
+    // surface.
+    auto tangent = [&](int before, int after, const glm::dvec3& at) {
+        const double dt = k[after]->time - k[before]->time;
+        glm::dvec3 m = (p[after] - p[before]) / dt;
+        return m - glm::dot(m, at) * at;
+    };
+    const glm::dvec3 m1 = tangent(0, 2, p[1]);
+    const glm::dvec3 m2 = tangent(1, 3, p[2]);
+    Position position;
+    position.direction = glm::normalize(hermite(p[1], p[2], m1, m2, k[1]->time, k[2]->time, time));
+    const double dh1 = (h[2] - h[0]) / (k[2]->time - k[0]->time);
+    const double dh2 = (h[3] - h[1]) / (k[3]->time - k[1]->time);
+    position.height = hermite(h[1], h[2], dh1, dh2, k[1]->time, k[2]->time, time);
+    return position;
+}
+
+Status CameraPath::placeHeight(Camera& camera, double height, double time,
+                               const Camera::TerrainHeight& terrainHeight) const {
     Result<double> ground = terrainHeight
                                 ? terrainHeight(camera.geodetic.latitude, camera.geodetic.longitude)
                                 : Result<double>(Error{"no terrain"});
@@ -237,55 +271,58 @@ Result<Camera> CameraPath::sample(double time, const Camera::TerrainHeight& terr
         return Error{text};
     }
     camera.geodetic.height = height;
-    camera.position = Ellipsoid::toEcef(camera.geodetic);
+    return {};
+}
 
-    const bool lookAtBoth = a.lookAt && b.lookAt && interpolation_ != PathInterpolation::Step;
-    if (lookAtBoth) {
-        auto targetHeight = [&](const Geodetic& target) {
-            if (!std::isnan(target.height)) {
-                return target.height;
-            }
-            Result<double> targetGround = terrainHeight
-                                              ? terrainHeight(target.latitude, target.longitude)
-                                              : Result<double>(Error{"no terrain"});
-            return targetGround ? std::max(targetGround.value(), 0.0) : 0.0;
-        };
-        const glm::dvec3 ta = unitVector(a.lookAt->latitude, a.lookAt->longitude);
-        const glm::dvec3 tb = unitVector(b.lookAt->latitude, b.lookAt->longitude);
-        const glm::dvec3 t = slerpUnit(ta, tb, s);
-        Geodetic target{std::asin(std::clamp(t.z, -1.0, 1.0)), std::atan2(t.y, t.x), 0.0};
-        target.height =
-            targetHeight(*a.lookAt) + (targetHeight(*b.lookAt) - targetHeight(*a.lookAt)) * s;
-        const glm::dvec3 targetEcef = Ellipsoid::toEcef(target);
-        if (glm::length(targetEcef - camera.position) < 1e-3) {
-            return Error{"path '" + name_ + "': the camera reaches the point it looks at"};
+Status CameraPath::lookAtInterpolatedTarget(Camera& camera, const CameraPathKey& a,
+                                            const CameraPathKey& b, double s,
+                                            const Camera::TerrainHeight& terrainHeight) const {
+    auto targetHeight = [&](const Geodetic& target) {
+        if (!std::isnan(target.height)) {
+            return target.height;
         }
-        camera.axes = Camera::axesLookingAt(camera.geodetic, targetEcef);
-        return camera;
+        Result<double> targetGround = terrainHeight
+                                          ? terrainHeight(target.latitude, target.longitude)
+                                          : Result<double>(Error{"no terrain"});
+        return targetGround ? std::max(targetGround.value(), 0.0) : 0.0;
+    };
+    const glm::dvec3 ta = unitVector(a.lookAt->latitude, a.lookAt->longitude);
+    const glm::dvec3 tb = unitVector(b.lookAt->latitude, b.lookAt->longitude);
+    const glm::dvec3 t = slerpUnit(ta, tb, s);
+    Geodetic target{std::asin(std::clamp(t.z, -1.0, 1.0)), std::atan2(t.y, t.x), 0.0};
+    target.height =
+        targetHeight(*a.lookAt) + (targetHeight(*b.lookAt) - targetHeight(*a.lookAt)) * s;
+    const glm::dvec3 targetEcef = Ellipsoid::toEcef(target);
+    if (glm::length(targetEcef - camera.position) < 1e-3) {
+        return Error{"path '" + name_ + "': the camera reaches the point it looks at"};
     }
+    camera.axes = Camera::axesLookingAt(camera.geodetic, targetEcef);
+    return {};
+}
+
+glm::dmat3 CameraPath::interpolatedAxes(const Geodetic& at, const CameraPathKey& a,
+                                        const CameraPathKey& b, double s) const {
     // Each key's orientation relative to its own local frame, slerped, then placed in
     // the local frame of the interpolated position.
     auto keyOrientation = [&](const CameraPathKey& key) {
-        Geodetic at{key.latitude, key.longitude, key.height.value_or(0.0)};
+        Geodetic keyAt{key.latitude, key.longitude, key.height.value_or(0.0)};
         glm::dmat3 axes;
         if (key.lookAt) {
             Geodetic target = *key.lookAt;
             if (std::isnan(target.height)) {
                 target.height = 0.0;
             }
-            axes = Camera::axesLookingAt(at, Ellipsoid::toEcef(target));
+            axes = Camera::axesLookingAt(keyAt, Ellipsoid::toEcef(target));
         } else {
-            axes = Camera::axesFromAngles(at, key.heading, key.pitch, key.roll);
+            axes = Camera::axesFromAngles(keyAt, key.heading, key.pitch, key.roll);
         }
-        return localOrientation(at, axes);
+        return localOrientation(keyAt, axes);
     };
     const glm::dquat qa = keyOrientation(a);
     const glm::dquat qb = keyOrientation(b);
     const glm::dquat q =
         interpolation_ == PathInterpolation::Step ? (s < 1.0 ? qa : qb) : glm::slerp(qa, qb, s);
-    camera.axes = Ellipsoid::localFrame(camera.geodetic.latitude, camera.geodetic.longitude) *
-                  glm::mat3_cast(q);
-    return camera;
+    return Ellipsoid::localFrame(at.latitude, at.longitude) * glm::mat3_cast(q);
 }
 
 }  // namespace sylva

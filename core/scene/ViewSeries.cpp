@@ -59,6 +59,381 @@ std::filesystem::path framePath(const std::filesystem::path& video, int frame) {
     return video.parent_path() / folder / name;
 }
 
+// A viewpoint of a series: a camera, or one frame of a path.
+struct Viewpoint {
+    std::string camera, path;
+    int frame = -1;
+    double pathTime = 0;
+};
+
+// One views block being expanded: its output template and whether that makes videos.
+struct Series {
+    const Block* views = nullptr;
+    std::string pattern;
+    bool video = false;
+};
+
+// The video file a job is a frame of (empty: none) and the views block that makes it.
+using VideoOf = std::pair<std::filesystem::path, const Block*>;
+
+// An MP4 template holds whole paths: no cameras, no {frame}.
+Status checkVideoSeries(const Series& series, const BlockReader& reader) {
+    const Block& views = *series.views;
+    if (series.video && !reader.references("cameras").empty()) {
+        return Error{locationOf(views, "output") + ": views '" + views.name +
+                     "': an MP4 output holds the frames of paths; render cameras in another "
+                     "views block with an image template such as \"{camera}.png\""};
+    }
+    if (series.video && series.pattern.find("{frame}") != std::string::npos) {
+        return Error{locationOf(views, "output") + ": views '" + views.name +
+                     "': an MP4 holds every frame of a path; remove {frame} from the output "
+                     "template"};
+    }
+    return {};
+}
+
+// The `times` of a views block (one empty time without them); every entry needs a date,
+// a time of day and a zone.
+Result<std::vector<std::optional<DateTime>>> timesOf(const Block& views) {
+    std::vector<std::optional<DateTime>> times;
+    if (const Attribute* written = views.find("times")) {
+        if (const ValueList* list = written->value.get<ValueList>()) {
+            for (const Value& item : *list) {
+                const std::string* text = item.get<std::string>();
+                Result<DateTime> parsed =
+                    text ? DateTime::parse(*text) : Result<DateTime>(Error{"not a time"});
+                if (!parsed) {
+                    return Error{item.location.toString() + ": views '" + views.name +
+                                 "': " + parsed.error().message};
+                }
+                if (Result<double> instant = parsed.value().unixSeconds(); !instant) {
+                    return Error{item.location.toString() + ": views '" + views.name +
+                                 "': " + instant.error().message};
+                }
+                times.push_back(parsed.value());
+            }
+        }
+    }
+    if (times.empty()) {
+        times.push_back(std::nullopt);
+    }
+    return times;
+}
+
+// Cameras, then every frame of every path.
+Result<std::vector<Viewpoint>> viewpointsOf(const ProjectModel& model, const BlockReader& reader) {
+    std::vector<Viewpoint> viewpoints;
+    for (const std::string& camera : reader.references("cameras")) {
+        if (!model.findCamera(camera)) {
+            return Error{reader.where("cameras") + "unknown camera '" + camera + "'"};
+        }
+        viewpoints.push_back({camera, "", -1, 0});
+    }
+    for (const std::string& pathName : reader.references("paths")) {
+        const Block* pathBlock = model.findPath(pathName);
+        if (!pathBlock) {
+            return Error{reader.where("paths") + "unknown path '" + pathName + "'"};
+        }
+        Result<CameraPath> path = CameraPath::fromBlock(*pathBlock);
+        if (!path) {
+            return path.error();
+        }
+        for (int frame = 0; frame < path.value().frameCount(); ++frame) {
+            viewpoints.push_back({"", pathName, frame, path.value().frameTime(frame)});
+        }
+    }
+    if (viewpoints.empty()) {
+        return Error{reader.where() + "no cameras or paths to render"};
+    }
+    return viewpoints;
+}
+
+// The jobs of the views blocks of one expand(), in order: per block, viewpoint and time
+// the images of every scenario, then the comparisons made of them; finish() appends
+// one Video job per video and checks that no two jobs write one file.
+class SeriesExpansion {
+public:
+    SeriesExpansion(const ProjectModel& model, const std::filesystem::path& outputFolder)
+        : model_(model), outputFolder_(outputFolder) {}
+
+    Status add(const Block& views);
+    Result<std::vector<RenderJob>> finish();
+
+private:
+    Status addImages(const Series& series, const Viewpoint& viewpoint,
+                     const std::optional<DateTime>& time,
+                     const std::vector<std::string>& scenarios);
+    // The compare (or blend) images whose two scenarios are among the images from
+    // `firstImage` on.
+    Status addComparisons(const Series& series, std::size_t firstImage,
+                          const std::vector<Block>& blocks, RenderJobKind kind,
+                          const char* firstName, const char* secondName);
+    // The number of images of a blend (`steps`, 1 without); sets its amount.
+    Result<int> blendSteps(const Series& series, const Block& block, RenderJob& job) const;
+    // Where a job goes: its file, or for videos a frame in the video's frames folder.
+    VideoOf place(const Series& series, RenderJob& job, const std::string& name) const;
+    Status addVideos(std::vector<RenderJob>& jobs, const std::vector<VideoOf>& videoFiles) const;
+    // Two jobs onto one file: the template lacks a placeholder that tells them apart.
+    Status checkOutputs(std::vector<RenderJob>& jobs) const;
+
+    const ProjectModel& model_;
+    const std::filesystem::path& outputFolder_;
+    std::vector<RenderJob> images_;
+    std::vector<RenderJob> comparisons_;
+    std::map<std::string, std::size_t> groups_;
+    std::vector<VideoOf> imageVideos_, comparisonVideos_;  // per image / comparison
+};
+
+Status SeriesExpansion::add(const Block& views) {
+    BlockReader reader(views, SchemaRegistry::builtin().find("views"));
+    Series series;
+    series.views = &views;
+    series.pattern = reader.string("output", "{camera}.png");
+    series.video = endsWithMp4(series.pattern);
+    if (Status valid = checkVideoSeries(series, reader); !valid) {
+        return valid;
+    }
+    std::vector<std::string> scenarios = reader.references("scenarios");
+    if (scenarios.empty()) {
+        scenarios.push_back(model_.scenarios.empty() ? std::string()
+                                                     : model_.scenarios.front().name);
+    }
+    Result<std::vector<std::optional<DateTime>>> times = timesOf(views);
+    if (!times) {
+        return times.error();
+    }
+    Result<std::vector<Viewpoint>> viewpoints = viewpointsOf(model_, reader);
+    if (!viewpoints) {
+        return viewpoints.error();
+    }
+    for (const Viewpoint& viewpoint : viewpoints.value()) {
+        for (const std::optional<DateTime>& time : times.value()) {
+            const std::size_t firstImage = images_.size();
+            if (Status added = addImages(series, viewpoint, time, scenarios); !added) {
+                return added;
+            }
+            if (Status added = addComparisons(series, firstImage, model_.compares,
+                                              RenderJobKind::Compare, "left", "right");
+                !added) {
+                return added;
+            }
+            if (Status added = addComparisons(series, firstImage, model_.blends,
+                                              RenderJobKind::Blend, "from", "to");
+                !added) {
+                return added;
+            }
+        }
+    }
+    return {};
+}
+
+Status SeriesExpansion::addImages(const Series& series, const Viewpoint& viewpoint,
+                                  const std::optional<DateTime>& time,
+                                  const std::vector<std::string>& scenarios) {
+    for (const std::string& scenario : scenarios) {
+        RenderJob job;
+        job.view = series.views->name;
+        job.camera = viewpoint.camera;
+        job.path = viewpoint.path;
+        job.frame = viewpoint.frame;
+        job.pathTime = viewpoint.pathTime;
+        job.scenario = scenario;
+        job.time = time;
+        job.unixSeconds = time ? time->unixSeconds().value() : 0.0;
+        Result<std::string> name = ViewSeries::expandTemplate(series.pattern, job);
+        if (!name) {
+            return Error{locationOf(*series.views, "output") + ": views '" + series.views->name +
+                         "': " + name.error().message};
+        }
+        job.videoFrame = series.video;
+        imageVideos_.push_back(place(series, job, name.value()));
+        const std::string key = ViewSeries::groupOf(job);
+        job.group = groups_.emplace(key, groups_.size()).first->second;
+        images_.push_back(std::move(job));
+    }
+    return {};
+}
+
+Status SeriesExpansion::addComparisons(const Series& series, std::size_t firstImage,
+                                       const std::vector<Block>& blocks, RenderJobKind kind,
+                                       const char* firstName, const char* secondName) {
+    auto imageOf = [&](const std::string& scenario) -> std::optional<std::size_t> {
+        for (std::size_t i = firstImage; i < images_.size(); ++i) {
+            if (images_[i].scenario == scenario) {
+                return i;
+            }
+        }
+        return std::nullopt;
+    };
+    for (const Block& block : blocks) {
+        BlockReader comparison(block, nullptr);
+        std::optional<std::string> first = comparison.reference(firstName);
+        std::optional<std::string> second = comparison.reference(secondName);
+        if (!first || !second) {
+            continue;
+        }
+        std::optional<std::size_t> a = imageOf(*first);
+        std::optional<std::size_t> b = imageOf(*second);
+        if (!a || !b) {
+            continue;
+        }
+        if (series.pattern.find("{scenario}") == std::string::npos) {
+            return Error{locationOf(*series.views, "output") + ": views '" + series.views->name +
+                         "': the series makes the " + block.keyword + " image '" + block.name +
+                         "', so its output template needs {scenario}"};
+        }
+        RenderJob job = images_[*a];
+        job.kind = kind;
+        job.scenario = block.name;
+        job.first = *a;
+        job.second = *b;
+        Result<int> steps = kind == RenderJobKind::Blend ? blendSteps(series, block, job) : 1;
+        if (!steps) {
+            return steps.error();
+        }
+        for (int step = 0; step < steps.value(); ++step) {
+            if (steps.value() > 1) {
+                job.step = step;
+                job.blendAmount = static_cast<double>(step) / (steps.value() - 1);
+            }
+            Result<std::string> name = ViewSeries::expandTemplate(series.pattern, job);
+            if (!name) {
+                return name.error();
+            }
+            comparisonVideos_.push_back(place(series, job, name.value()));
+            comparisons_.push_back(job);
+        }
+    }
+    return {};
+}
+
+Result<int> SeriesExpansion::blendSteps(const Series& series, const Block& block,
+                                        RenderJob& job) const {
+    // A blend sequence: `steps` images from t = 0 to 1.
+    BlockReader reader(block, nullptr);
+    job.blendAmount = reader.optionalNumber("amount").value_or(0.5);
+    int steps = 1;
+    if (std::optional<double> count = reader.optionalNumber("steps")) {
+        if (*count != std::floor(*count)) {
+            return Error{locationOf(block, "steps") + ": blend '" + block.name +
+                         "': steps must be a whole number of images, got " +
+                         std::to_string(*count)};
+        }
+        steps = static_cast<int>(*count);
+    }
+    if (steps > 1 && series.pattern.find("{step}") == std::string::npos &&
+        series.pattern.find("{t}") == std::string::npos) {
+        return Error{locationOf(*series.views, "output") + ": views '" + series.views->name +
+                     "': the blend '" + block.name + "' is a sequence of " + std::to_string(steps) +
+                     " images (steps), so the output template needs {step} or {t}"};
+    }
+    return steps;
+}
+
+VideoOf SeriesExpansion::place(const Series& series, RenderJob& job,
+                               const std::string& name) const {
+    job.output = outputFolder_ / name;
+    if (!series.video) {
+        return {};
+    }
+    const std::filesystem::path file = job.output;
+    job.output = framePath(file, job.frame);
+    return {file, series.views};
+}
+
+Result<std::vector<RenderJob>> SeriesExpansion::finish() {
+    std::vector<RenderJob> jobs = std::move(images_);
+    for (RenderJob& comparison : comparisons_) {
+        jobs.push_back(std::move(comparison));
+    }
+    std::vector<VideoOf> videoFiles = std::move(imageVideos_);
+    videoFiles.insert(videoFiles.end(), comparisonVideos_.begin(), comparisonVideos_.end());
+    if (Status added = addVideos(jobs, videoFiles); !added) {
+        return added.error();
+    }
+    if (Status distinct = checkOutputs(jobs); !distinct) {
+        return distinct.error();
+    }
+    return jobs;
+}
+
+// One Video job per video file, after everything else, listing its frames in order.
+Status SeriesExpansion::addVideos(std::vector<RenderJob>& jobs,
+                                  const std::vector<VideoOf>& videoFiles) const {
+    std::map<std::filesystem::path, std::size_t> videos;
+    std::vector<RenderJob> videoJobs;
+    auto describe = [](const RenderJob& job) {
+        std::string text = job.path;  // appended piecewise: GCC 12 -Wrestrict misfires
+        text.append(" ").append(job.scenario);
+        if (job.time) {
+            text.append(" ").append(job.time->text());
+        }
+        return text;
+    };
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+        const auto& [file, views] = videoFiles[i];
+        if (file.empty()) {
+            continue;
+        }
+        auto [found, added] = videos.emplace(file, videoJobs.size());
+        if (added) {
+            RenderJob video = jobs[i];
+            video.kind = RenderJobKind::Video;
+            video.output = file;
+            video.frames.clear();
+            Result<CameraPath> path = CameraPath::fromBlock(*model_.findPath(jobs[i].path));
+            SYLVA_CHECK(path.ok());  // checked when its frames were listed
+            video.framesPerSecond = path.value().framesPerSecond();
+            videoJobs.push_back(std::move(video));
+        }
+        RenderJob& video = videoJobs[found->second];
+        const RenderJob& firstFrame = jobs[video.frames.empty() ? i : video.frames.front()];
+        if (firstFrame.path != jobs[i].path || firstFrame.scenario != jobs[i].scenario ||
+            describe(firstFrame) != describe(jobs[i])) {
+            return Error{locationOf(*views, "output") + ": views '" + views->name +
+                         "': two videos would be written to '" + file.string() + "' (" +
+                         describe(firstFrame) + "; " + describe(jobs[i]) +
+                         "); add {path}, {scenario} or {time} to the template"};
+        }
+        video.frames.push_back(i);
+        jobs[i].video = jobs.size() + found->second;
+    }
+    for (RenderJob& video : videoJobs) {
+        jobs.push_back(std::move(video));
+    }
+    return {};
+}
+
+Status SeriesExpansion::checkOutputs(std::vector<RenderJob>& jobs) const {
+    auto describe = [](const RenderJob& job) {
+        std::string text = job.path.empty()
+                               ? "camera " + job.camera
+                               : "path " + job.path + " frame " + std::to_string(job.frame);
+        text += ", " + std::string(job.kind == RenderJobKind::Image ? "scenario " : "comparison ") +
+                job.scenario;
+        if (job.time) {
+            text += ", time " + job.time->text();
+        }
+        return text;
+    };
+    std::map<std::filesystem::path, std::size_t> outputs;
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+        jobs[i].index = i;
+        const std::filesystem::path normal = jobs[i].output.lexically_normal();
+        auto [found, inserted] = outputs.emplace(normal, i);
+        if (inserted) {
+            continue;
+        }
+        const RenderJob& other = jobs[found->second];
+        const Block* views = model_.findViews(jobs[i].view);
+        return Error{(views ? locationOf(*views, "output") : model_.file.string()) + ": views '" +
+                     jobs[i].view + "': two images would be written to '" + normal.string() +
+                     "' (" + describe(other) + "; " + describe(jobs[i]) +
+                     "); add {camera}, {scenario}, {time} or {frame} to the output template"};
+    }
+    return {};
+}
+
 }  // namespace
 
 Result<std::string> ViewSeries::expandTemplate(const std::string& pattern, const RenderJob& job) {
@@ -173,282 +548,13 @@ Result<std::vector<RenderJob>> ViewSeries::expand(const ProjectModel& model,
     if (viewBlocks.empty()) {
         return Error{model.file.string() + ": the project has no views block: nothing to render"};
     }
-
-    std::vector<RenderJob> images;
-    std::vector<RenderJob> comparisons;
-    std::vector<std::string> patterns;  // per job, for collision messages
-    std::map<std::string, std::size_t> groups;
-    // Per image / comparison: the video it is a frame of (empty path: none) and its block.
-    using VideoOf = std::pair<std::filesystem::path, const Block*>;
-    std::vector<VideoOf> videoFiles, comparisonVideos;
+    SeriesExpansion expansion(model, outputFolder);
     for (const Block* views : viewBlocks) {
-        BlockReader reader(*views, SchemaRegistry::builtin().find("views"));
-        const std::string pattern = reader.string("output", "{camera}.png");
-        const bool video = endsWithMp4(pattern);
-        if (video && !reader.references("cameras").empty()) {
-            return Error{locationOf(*views, "output") + ": views '" + views->name +
-                         "': an MP4 output holds the frames of paths; render cameras in another "
-                         "views block with an image template such as \"{camera}.png\""};
-        }
-        if (video && pattern.find("{frame}") != std::string::npos) {
-            return Error{locationOf(*views, "output") + ": views '" + views->name +
-                         "': an MP4 holds every frame of a path; remove {frame} from the output "
-                         "template"};
-        }
-        // Where a job goes: its file, or for videos a frame in the video's frames folder.
-        auto place = [&](RenderJob& job, const std::string& name) {
-            job.output = outputFolder / name;
-            if (video) {
-                const std::filesystem::path file = job.output;
-                job.output = framePath(file, job.frame);
-                videoFiles.emplace_back(file, views);
-            } else {
-                videoFiles.emplace_back();
-            }
-        };
-        std::vector<std::string> scenarios = reader.references("scenarios");
-        if (scenarios.empty()) {
-            scenarios.push_back(model.scenarios.empty() ? std::string()
-                                                        : model.scenarios.front().name);
-        }
-        // Times: every entry needs a date, a time of day and a zone.
-        std::vector<std::optional<DateTime>> times;
-        if (const Attribute* written = views->find("times")) {
-            if (const ValueList* list = written->value.get<ValueList>()) {
-                for (const Value& item : *list) {
-                    const std::string* text = item.get<std::string>();
-                    Result<DateTime> parsed =
-                        text ? DateTime::parse(*text) : Result<DateTime>(Error{"not a time"});
-                    if (!parsed) {
-                        return Error{item.location.toString() + ": views '" + views->name +
-                                     "': " + parsed.error().message};
-                    }
-                    if (Result<double> instant = parsed.value().unixSeconds(); !instant) {
-                        return Error{item.location.toString() + ": views '" + views->name +
-                                     "': " + instant.error().message};
-                    }
-                    times.push_back(parsed.value());
-                }
-            }
-        }
-        if (times.empty()) {
-            times.push_back(std::nullopt);
-        }
-        // Viewpoints: cameras, then every frame of every path.
-        struct Viewpoint {
-            std::string camera, path;
-            int frame = -1;
-            double pathTime = 0;
-        };
-        std::vector<Viewpoint> viewpoints;
-        for (const std::string& camera : reader.references("cameras")) {
-            if (!model.findCamera(camera)) {
-                return Error{reader.where("cameras") + "unknown camera '" + camera + "'"};
-            }
-            viewpoints.push_back({camera, "", -1, 0});
-        }
-        for (const std::string& pathName : reader.references("paths")) {
-            const Block* pathBlock = model.findPath(pathName);
-            if (!pathBlock) {
-                return Error{reader.where("paths") + "unknown path '" + pathName + "'"};
-            }
-            Result<CameraPath> path = CameraPath::fromBlock(*pathBlock);
-            if (!path) {
-                return path.error();
-            }
-            for (int frame = 0; frame < path.value().frameCount(); ++frame) {
-                viewpoints.push_back({"", pathName, frame, path.value().frameTime(frame)});
-            }
-        }
-        if (viewpoints.empty()) {
-            return Error{reader.where() + "no cameras or paths to render"};
-        }
-        for (const Viewpoint& viewpoint : viewpoints) {
-            for (const std::optional<DateTime>& time : times) {
-                const std::size_t firstImage = images.size();
-                for (const std::string& scenario : scenarios) {
-                    RenderJob job;
-                    job.view = views->name;
-                    job.camera = viewpoint.camera;
-                    job.path = viewpoint.path;
-                    job.frame = viewpoint.frame;
-                    job.pathTime = viewpoint.pathTime;
-                    job.scenario = scenario;
-                    job.time = time;
-                    job.unixSeconds = time ? time->unixSeconds().value() : 0.0;
-                    Result<std::string> name = expandTemplate(pattern, job);
-                    if (!name) {
-                        return Error{locationOf(*views, "output") + ": views '" + views->name +
-                                     "': " + name.error().message};
-                    }
-                    job.videoFrame = video;
-                    place(job, name.value());
-                    const std::string key = groupOf(job);
-                    job.group = groups.emplace(key, groups.size()).first->second;
-                    images.push_back(std::move(job));
-                    patterns.push_back(pattern);
-                }
-                // Comparisons whose two scenarios this series renders.
-                auto imageOf = [&](const std::string& scenario) -> std::optional<std::size_t> {
-                    for (std::size_t i = firstImage; i < images.size(); ++i) {
-                        if (images[i].scenario == scenario) {
-                            return i;
-                        }
-                    }
-                    return std::nullopt;
-                };
-                auto addComparisons = [&](const std::vector<Block>& blocks, RenderJobKind kind,
-                                          const char* firstName, const char* secondName) -> Status {
-                    for (const Block& block : blocks) {
-                        BlockReader comparison(block, nullptr);
-                        std::optional<std::string> first = comparison.reference(firstName);
-                        std::optional<std::string> second = comparison.reference(secondName);
-                        if (!first || !second) {
-                            continue;
-                        }
-                        std::optional<std::size_t> a = imageOf(*first);
-                        std::optional<std::size_t> b = imageOf(*second);
-                        if (!a || !b) {
-                            continue;
-                        }
-                        if (pattern.find("{scenario}") == std::string::npos) {
-                            return Error{locationOf(*views, "output") + ": views '" + views->name +
-                                         "': the series makes the " + block.keyword + " image '" +
-                                         block.name + "', so its output template needs {scenario}"};
-                        }
-                        RenderJob job = images[*a];
-                        job.kind = kind;
-                        job.scenario = block.name;
-                        job.first = *a;
-                        job.second = *b;
-                        // A blend sequence: `steps` images from t = 0 to 1.
-                        int steps = 1;
-                        if (kind == RenderJobKind::Blend) {
-                            job.blendAmount = comparison.optionalNumber("amount").value_or(0.5);
-                            if (std::optional<double> count = comparison.optionalNumber("steps")) {
-                                if (*count != std::floor(*count)) {
-                                    return Error{locationOf(block, "steps") + ": blend '" +
-                                                 block.name +
-                                                 "': steps must be a whole number "
-                                                 "of images, got " +
-                                                 std::to_string(*count)};
-                                }
-                                steps = static_cast<int>(*count);
-                            }
-                            if (steps > 1 && pattern.find("{step}") == std::string::npos &&
-                                pattern.find("{t}") == std::string::npos) {
-                                return Error{locationOf(*views, "output") + ": views '" +
-                                             views->name + "': the blend '" + block.name +
-                                             "' is a sequence of " + std::to_string(steps) +
-                                             " images (steps), so the output template needs "
-                                             "{step} or {t}"};
-                            }
-                        }
-                        for (int step = 0; step < steps; ++step) {
-                            if (steps > 1) {
-                                job.step = step;
-                                job.blendAmount = static_cast<double>(step) / (steps - 1);
-                            }
-                            Result<std::string> name = expandTemplate(pattern, job);
-                            if (!name) {
-                                return name.error();
-                            }
-                            place(job, name.value());
-                            comparisonVideos.push_back(videoFiles.back());
-                            videoFiles.pop_back();
-                            comparisons.push_back(job);
-                        }
-                    }
-                    return {};
-                };
-                if (Status added =
-                        addComparisons(model.compares, RenderJobKind::Compare, "left", "right");
-                    !added) {
-                    return added.error();
-                }
-                if (Status added = addComparisons(model.blends, RenderJobKind::Blend, "from", "to");
-                    !added) {
-                    return added.error();
-                }
-            }
+        if (Status added = expansion.add(*views); !added) {
+            return added.error();
         }
     }
-    std::vector<RenderJob> jobs = std::move(images);
-    for (RenderJob& comparison : comparisons) {
-        jobs.push_back(std::move(comparison));
-    }
-    // One Video job per video file, after everything else, listing its frames in order.
-    videoFiles.insert(videoFiles.end(), comparisonVideos.begin(), comparisonVideos.end());
-    std::map<std::filesystem::path, std::size_t> videos;
-    std::vector<RenderJob> videoJobs;
-    for (std::size_t i = 0; i < jobs.size(); ++i) {
-        const auto& [file, views] = videoFiles[i];
-        if (file.empty()) {
-            continue;
-        }
-        auto [found, added] = videos.emplace(file, videoJobs.size());
-        if (added) {
-            RenderJob video = jobs[i];
-            video.kind = RenderJobKind::Video;
-            video.output = file;
-            video.frames.clear();
-            Result<CameraPath> path = CameraPath::fromBlock(*model.findPath(jobs[i].path));
-            SYLVA_CHECK(path.ok());  // checked when its frames were listed
-            video.framesPerSecond = path.value().framesPerSecond();
-            videoJobs.push_back(std::move(video));
-        }
-        RenderJob& video = videoJobs[found->second];
-        const RenderJob& firstFrame = jobs[video.frames.empty() ? i : video.frames.front()];
-        auto describe = [](const RenderJob& job) {
-            std::string text = job.path;  // appended piecewise: GCC 12 -Wrestrict misfires
-            text.append(" ").append(job.scenario);
-            if (job.time) {
-                text.append(" ").append(job.time->text());
-            }
-            return text;
-        };
-        if (firstFrame.path != jobs[i].path || firstFrame.scenario != jobs[i].scenario ||
-            describe(firstFrame) != describe(jobs[i])) {
-            return Error{locationOf(*views, "output") + ": views '" + views->name +
-                         "': two videos would be written to '" + file.string() + "' (" +
-                         describe(firstFrame) + "; " + describe(jobs[i]) +
-                         "); add {path}, {scenario} or {time} to the template"};
-        }
-        video.frames.push_back(i);
-        jobs[i].video = jobs.size() + found->second;
-    }
-    for (RenderJob& video : videoJobs) {
-        jobs.push_back(std::move(video));
-    }
-    // Two jobs onto one file: the template lacks a placeholder that tells them apart.
-    std::map<std::filesystem::path, std::size_t> outputs;
-    for (std::size_t i = 0; i < jobs.size(); ++i) {
-        jobs[i].index = i;
-        const std::filesystem::path normal = jobs[i].output.lexically_normal();
-        auto [found, inserted] = outputs.emplace(normal, i);
-        if (!inserted) {
-            const RenderJob& other = jobs[found->second];
-            const Block* views = model.findViews(jobs[i].view);
-            auto describe = [](const RenderJob& job) {
-                std::string text = job.path.empty()
-                                       ? "camera " + job.camera
-                                       : "path " + job.path + " frame " + std::to_string(job.frame);
-                text +=
-                    ", " +
-                    std::string(job.kind == RenderJobKind::Image ? "scenario " : "comparison ") +
-                    job.scenario;
-                if (job.time) {
-                    text += ", time " + job.time->text();
-                }
-                return text;
-            };
-            return Error{(views ? locationOf(*views, "output") : model.file.string()) +
-                         ": views '" + jobs[i].view + "': two images would be written to '" +
-                         normal.string() + "' (" + describe(other) + "; " + describe(jobs[i]) +
-                         "); add {camera}, {scenario}, {time} or {frame} to the output template"};
-        }
-    }
-    return jobs;
+    return expansion.finish();
 }
 
 std::string ViewSeries::groupOf(const RenderJob& job) {

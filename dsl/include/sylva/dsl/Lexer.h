@@ -28,6 +28,11 @@ private:
     SourceLocation locationAt(std::size_t offset, std::size_t length) const;
     void push(TokenKind kind, std::size_t start, std::size_t length);
     bool colourContext() const;
+    void lexToken();
+    void lexLineComment();   // `#` (not a colour) or `//` to the end of the line
+    void lexBlockComment();  // `/* ... */`, nested
+    void lexReference();     // `@name`, `@ns.name.field`
+    void lexPunctuation(char c, char next);
     void lexNumber();
     bool lexDateTime();
     void lexString();

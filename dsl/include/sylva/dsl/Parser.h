@@ -43,6 +43,7 @@ private:
     void parseBody(BlockNode& block, bool allowOverrides);
 
     ExprPtr parseExpression(int minBindingPower = 0);
+    ExprPtr parseConditional(ExprPtr condition);
     ExprPtr parsePrefix();
     ExprPtr parseList();
     ExprPtr parseObject();

@@ -9,7 +9,6 @@
 #include <map>
 #include <memory>
 #include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -17,6 +16,7 @@
 #include "sylva/core/model/Schema.h"
 #include "sylva/dsl/Ast.h"
 #include "sylva/dsl/Diagnostic.h"
+#include "sylva/dsl/QuantityText.h"  // formatQuantity, declared here before
 
 namespace sylva::dsl {
 
@@ -45,9 +45,21 @@ struct ResolveOptions {
     bool lenient = false;  // unknown attributes are warnings (W0102), not errors
 };
 
+class NameScope;
+class ValueChecker;
+class ExpressionEvaluator;
+class BlockChecker;
+class GraphChecker;
+struct Declaration;
+struct Patch;
+
+// The orchestrator of the checks. Its parts (private headers in dsl/: NameScope,
+// ExpressionEvaluator with BuiltinFunctions, ValueChecker, BlockChecker, GraphChecker)
+// are made afresh by each resolve().
 class Resolver {
 public:
     Resolver(const SchemaRegistry& schema, std::vector<Diagnostic>& diagnostics);
+    ~Resolver();
 
     // One model per scenario in declaration order (one model with an empty scenario name
     // when the project has none); empty when an error was reported.
@@ -62,92 +74,38 @@ public:
                                         const std::filesystem::path& path);
 
 private:
-    struct Declaration {
-        std::string keyword;  // "param", "source", "camera" ...
-        std::string name;     // qualified: "ns.forest"
-        std::string kind;
-        std::string scope;
-        SourceLocation location;
-        const BlockNode* block = nullptr;
-        const ParamNode* param = nullptr;
-        const KindSchema* schema = nullptr;
-        // For params:
-        const Expr* valueExpr = nullptr;
-        std::string valueScope;  // scope the value expression is evaluated in
-        std::optional<Value> value;
-        int state = 0;  // 0 not evaluated, 1 evaluating, 2 done
-        bool used = false;
-        // For scenarios: the effective state after `extends`.
-        int scenarioState = 0;
-        std::optional<Block> scenarioBlock;
-        std::vector<std::pair<std::string, const AttributeNode*>> overrideAttributes;
-        std::vector<std::string> overrideScopes;
-    };
-    // An attribute written somewhere else that replaces the block's own (override, --set).
-    struct Patch {
-        const AttributeNode* attribute = nullptr;
-        std::string scope;
-    };
-    struct BlockEntry {
-        const BlockNode* node = nullptr;
-        const KindSchema* schema = nullptr;
-        std::string scope;
-    };
-
-    void declare(const Statement& statement, const std::string& scope);
-    bool addName(Declaration declaration);
-    void applyDefines(const std::vector<DefineNode>& defines);
-    std::optional<Value> evaluateParam(Declaration& param, const SourceLocation& use);
-    std::optional<Block> checkBlock(const BlockEntry& entry, const std::vector<Patch>& patches,
-                                    const Block* inherited = nullptr);
-    void fillDefaults(Block& block, const KindSchema& schema,
-                      const std::vector<std::string>& written = {});
-    void findCycles(const std::vector<Block>& sources);
-    // Port types of references to sources whose output follows their attributes
-    // (KindSchema::outputFrom), checked on the finished graph of one model.
-    void checkPortTypes(const std::vector<Block>& sources);
-    std::optional<PortType> outputOf(const std::vector<Block>& sources, const std::string& name,
-                                     int depth) const;
-    std::string describeBlock(const KindSchema& schema) const;
+    // The steps of resolve(), in order.
+    void collectSets(const std::vector<SetNode>& sets);
+    void evaluateParams();
+    void addImplicitBlocks();
+    ProjectModel checkBlocks(const std::filesystem::path& path);
+    void addToModel(ProjectModel& model, Block block);
+    void acceptProjectCrs(const Block& project);
+    std::vector<Declaration*> resolveScenarios(ProjectModel& model);
     void resolveScenario(Declaration& scenario);
-    void rebasePath(const AttributeNode& attribute, Value& value) const;
-    Declaration* lookup(const std::string& scope, const std::string& written,
-                        std::vector<std::string>* fields);
-
-    std::optional<Value> evaluate(const Expr& expr, const std::string& expectedTarget);
-    std::optional<Value> evaluateReference(const Expr& expr, const std::string& expectedTarget);
-    std::optional<Value> evaluateBlockField(Declaration& declaration, const std::string& field,
-                                            const SourceLocation& location);
-    std::optional<Value> fieldOf(const Value& value, const std::string& field,
-                                 const SourceLocation& location);
-    std::optional<Value> evaluateUnary(const Expr& expr);
-    std::optional<Value> evaluateBinary(const Expr& expr);
-    std::optional<Value> evaluateCall(const Expr& expr);
-    std::optional<Value> evaluateGeo(const Expr& expr, std::vector<Value> arguments);
-    std::optional<Value> coerce(Value value, const AttributeSchema& schema,
-                                const std::string& what);
-    std::optional<double> coerceAngle(const Value& value, const std::string& what);
+    // Sets `inherited` to the block of the scenario `extends` names (resolved first;
+    // stays nullptr without `extends` or after an error reported here). False when the
+    // parent has errors of its own: the scenario is then not checked.
+    bool resolveParent(Declaration& scenario, const Block*& inherited);
+    void collectOverrides(Declaration& scenario);
+    void addOmittedBlocks(ProjectModel& model, const std::filesystem::path& path);
+    void collectParams(ProjectModel& model);
+    std::vector<ProjectModel> scenarioModels(ProjectModel model,
+                                             const std::vector<Declaration*>& scenarios);
+    // Applies the overrides of `scenario` to its copy of the model; the names of the
+    // blocks they change.
+    std::vector<std::string> applyOverrides(ProjectModel& model, const Declaration& scenario);
+    const std::vector<Patch>& setPatchesOf(const std::string& block) const;
 
     const SchemaRegistry& schema_;
     std::vector<Diagnostic>& diagnostics_;
-    ResolveOptions options_;
-    std::vector<Declaration> declarations_;
-    std::map<std::string, std::size_t, std::less<>> names_;
-    std::vector<BlockEntry> blocks_;  // to check, in order
-    const BlockNode* project_ = nullptr;
-    std::optional<Value> projectCrs_;  // project { crs = "..." }, once checked and valid
-    bool projectCrsInvalid_ = false;   // a crs was written but cannot be used (already reported)
-    const BlockNode* render_ = nullptr;
-    std::vector<std::unique_ptr<BlockNode>> implicit_;  // project/render the files omit
-    std::filesystem::path rootDirectory_;               // of the project file, for rebasePath
-    std::string scope_;                                 // scope of the expression being evaluated
-    std::vector<std::string> evaluatingFields_;         // "block.field" being evaluated (cycles)
-    std::set<std::string> reportedCycles_;
-    std::set<std::string> reportedPortErrors_;
+    std::unique_ptr<NameScope> names_;
     std::map<std::string, std::vector<Patch>> setPatches_;  // --set, by block name
+    std::unique_ptr<ValueChecker> values_;
+    std::unique_ptr<ExpressionEvaluator> expressions_;
+    std::unique_ptr<BlockChecker> blocks_;
+    std::unique_ptr<GraphChecker> graph_;
+    std::vector<std::unique_ptr<BlockNode>> implicit_;  // project/render the files omit
 };
-
-// "2500m", "30deg", "80%", "20s", "320px", "7": a quantity in the units users write.
-std::string formatQuantity(const Quantity& quantity);
 
 }  // namespace sylva::dsl

@@ -15,6 +15,7 @@
 // Units: seconds, radians, metres; frames: geodetic WGS84 and ECEF (see Camera).
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -62,6 +63,30 @@ public:
     Result<Camera> sample(double time, const Camera::TerrainHeight& terrainHeight) const;
 
 private:
+    // A point of the path: its unit position vector (ECEF direction) and the height that
+    // is interpolated (above the terrain or the ellipsoid, see heightsAboveTerrain_).
+    struct Position {
+        glm::dvec3 direction{};
+        double height = 0;
+    };
+    // The height `key` interpolates (eye_height over the terrain is measured here).
+    Result<double> keyHeight(const CameraPathKey& key,
+                             const Camera::TerrainHeight& terrainHeight) const;
+    // The position at `time`, fraction `s` into the segment from key `segment` to the next.
+    Result<Position> interpolatePosition(std::size_t segment, double s, double time,
+                                         const Camera::TerrainHeight& terrainHeight) const;
+    Result<Position> catmullRom(std::size_t segment, double time,
+                                const Camera::TerrainHeight& terrainHeight) const;
+    // Sets the camera's height above the ellipsoid; fails below the terrain.
+    Status placeHeight(Camera& camera, double height, double time,
+                       const Camera::TerrainHeight& terrainHeight) const;
+    // Both keys look at a point: look at the interpolated point.
+    Status lookAtInterpolatedTarget(Camera& camera, const CameraPathKey& a, const CameraPathKey& b,
+                                    double s, const Camera::TerrainHeight& terrainHeight) const;
+    // The keys' orientations slerped in their local frames, placed in the frame at `at`.
+    glm::dmat3 interpolatedAxes(const Geodetic& at, const CameraPathKey& a, const CameraPathKey& b,
+                                double s) const;
+
     std::string name_;
     std::vector<CameraPathKey> keys_;
     PathInterpolation interpolation_;
