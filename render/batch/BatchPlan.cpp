@@ -257,12 +257,23 @@ Status BatchPlan::prepareOutputs() {
             }
         }
     }
-    if (manifest_ && selection_.resume) {
-        if (Status loaded = manifest_->load(); !loaded) {
-            return loaded;
-        }
-    }
-    return {};
+    return selection_.resume ? loadManifest() : Status();
+}
+
+Status BatchPlan::loadManifest() {
+    return manifest_ ? manifest_->load() : Status();
+}
+
+std::uint64_t BatchPlan::hashOf(const RenderJob& job) const {
+    const auto found = hashes_.find(job.index);
+    SYLVA_CHECK(found != hashes_.end());
+    return found->second;
+}
+
+const TerrainLayers& BatchPlan::layersOf(const RenderJob& job) const {
+    const auto found = layers_.find(job.index);
+    SYLVA_CHECK(found != layers_.end());
+    return found->second;
 }
 
 const CameraPath* BatchPlan::pathOf(const RenderJob& job) const {

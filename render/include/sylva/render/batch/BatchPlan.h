@@ -73,6 +73,9 @@ public:
     // when the plan writes videos (else a located error telling how to get it), every
     // output folder created and writable, and with `resume` the manifest read.
     Status prepareOutputs();
+    // Reads the run's manifest, if there is one (a missing file is an empty manifest; a
+    // corrupt one is an error naming it), so isCurrent() can answer; writes nothing.
+    Status loadManifest();
 
     // Every job of the series, in ViewSeries order; job.index is the position here.
     const std::vector<RenderJob>& allJobs() const { return allJobs_; }
@@ -87,10 +90,11 @@ public:
     // The default scenario's model (cameras, paths, views, compare and blend blocks).
     const ProjectModel& model() const { return project_->defaultModel(); }
 
-    // The hash of everything that decides the job's pixels (see above).
-    std::uint64_t hashOf(const RenderJob& job) const { return hashes_.at(job.index); }
-    // The layers of an Image job's scenario.
-    const TerrainLayers& layersOf(const RenderJob& job) const { return layers_.at(job.index); }
+    // The hash of everything that decides the job's pixels (see above), for the jobs of
+    // this run and the images and frames they are made of (SYLVA_CHECK otherwise).
+    std::uint64_t hashOf(const RenderJob& job) const;
+    // The layers of an Image job's scenario (same jobs as hashOf).
+    const TerrainLayers& layersOf(const RenderJob& job) const;
     // The path a job samples (null for camera jobs).
     const CameraPath* pathOf(const RenderJob& job) const;
     // The comparison or blend block a Compare/Blend job is made by.
