@@ -15,7 +15,7 @@ namespace sylva::render {
 
 // One job that is done: written, or skipped because its manifest record is current.
 struct JobReport {
-    const RenderJob* job = nullptr;
+    const RenderJob* job = nullptr;  // the plan's job; valid during the call
     bool skipped = false;
     double seconds = 0;  // wall time to make it (0 when skipped)
     // Images and comparisons: the size written. Images: the terrain levels drawn, the
