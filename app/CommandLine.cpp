@@ -1,5 +1,7 @@
 #include "CommandLine.h"
 
+#include <cstdlib>
+
 namespace sylva::app {
 
 ParsedCommandLine parseCommandLine(const std::vector<std::string>& arguments,
@@ -102,6 +104,35 @@ Result<std::optional<render::GlBackend>> glBackendOption(const ParsedCommandLine
         return Error{"--gl: " + backend.error().message};
     }
     return std::optional<render::GlBackend>(backend.value());
+}
+
+std::optional<int> parseWholeNumber(const std::string& text, long minimum, long maximum) {
+    SYLVA_CHECK(static_cast<int>(minimum) == minimum && static_cast<int>(maximum) == maximum);
+    // Out of long's range strtol gives LONG_MIN or LONG_MAX, outside every int range.
+    char* end = nullptr;
+    const long value = std::strtol(text.c_str(), &end, 10);
+    if (end == text.c_str() || *end != '\0' || value < minimum || value > maximum) {
+        return std::nullopt;
+    }
+    return static_cast<int>(value);
+}
+
+Result<std::optional<int>> wholeNumberOption(const ParsedCommandLine& command,
+                                             const std::string& name, long minimum, long maximum,
+                                             const std::string& requirement, EchoValue echo) {
+    const std::optional<std::string> text = command.get(name);
+    if (!text) {
+        return std::optional<int>();
+    }
+    const std::optional<int> value = parseWholeNumber(*text, minimum, maximum);
+    if (!value) {
+        std::string message = "--" + name + " " + requirement;
+        if (echo == EchoValue::Yes) {
+            message += ", got '" + *text + "'";
+        }
+        return Error{message};
+    }
+    return std::optional<int>(*value);
 }
 
 }  // namespace sylva::app

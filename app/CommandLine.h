@@ -47,4 +47,17 @@ Result<std::optional<render::GlBackend>> glBackendOption(const ParsedCommandLine
 ParsedCommandLine parseCommandLine(const std::vector<std::string>& arguments,
                                    const std::vector<OptionSpec>& specs);
 
+// A whole-number option `--NAME N` within minimum..maximum (decimal as strtol reads it, the
+// whole text; the bounds within int): nullopt when absent, else N, or a usage error (exit
+// code 2) saying "--NAME REQUIREMENT", followed by ", got 'N'" with EchoValue::Yes, e.g.
+// "--threads needs a positive integer, got 'x'" or "--dem expects a sample count per side
+// within 16..8192".
+enum class EchoValue { No, Yes };
+Result<std::optional<int>> wholeNumberOption(const ParsedCommandLine& command,
+                                             const std::string& name, long minimum, long maximum,
+                                             const std::string& requirement,
+                                             EchoValue echo = EchoValue::Yes);
+// `text` as such a whole number, nullopt otherwise (for the items of a list option).
+std::optional<int> parseWholeNumber(const std::string& text, long minimum, long maximum);
+
 }  // namespace sylva::app

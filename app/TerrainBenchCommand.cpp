@@ -33,16 +33,20 @@ int runTerrainBench(const std::vector<std::string>& arguments) {
             return 2;
         }
     }
-    if (std::optional<std::string> dem = command.get("dem")) {
-        options.demSamples = std::atoi(dem->c_str());
-        if (options.demSamples < 16 || options.demSamples > 8192) {
-            reportError("--dem expects a sample count per side within 16..8192");
-            return 2;
-        }
+    const Result<std::optional<int>> dem = wholeNumberOption(
+        command, "dem", 16, 8192, "expects a sample count per side within 16..8192", EchoValue::No);
+    if (!dem) {
+        reportError(dem.error().message);
+        return 2;
     }
-    if (std::optional<std::string> frames = command.get("frames")) {
-        options.framesPerSegment = std::max(1, std::atoi(frames->c_str()));
+    options.demSamples = dem.value().value_or(options.demSamples);
+    const Result<std::optional<int>> frames = wholeNumberOption(
+        command, "frames", 1, 10000, "expects a whole number within 1..10000", EchoValue::No);
+    if (!frames) {
+        reportError(frames.error().message);
+        return 2;
     }
+    options.framesPerSegment = frames.value().value_or(options.framesPerSegment);
     options.framesFolder = command.get("write-frames").value_or("");
     options.waitForTiles = command.has("wait-for-tiles");
     const Result<std::optional<std::size_t>> cacheOption = cacheMegabytesOption(command);

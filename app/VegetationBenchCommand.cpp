@@ -3,7 +3,6 @@
 // vegetation renderer benchmark of issue 7 (bench/VegetationBenchmark.h). Prints the metrics as
 // JSON with --json, else one line per metric.
 #include <cstdio>
-#include <cstdlib>
 
 #include "CommandLine.h"
 #include "Commands.h"
@@ -37,16 +36,16 @@ int runVegetationBench(const std::vector<std::string>& arguments) {
         }
     }
     const auto integer = [&](const char* name, int minimum, int maximum, int& target) {
-        if (std::optional<std::string> value = command.get(name)) {
-            char* end = nullptr;
-            const long parsed = std::strtol(value->c_str(), &end, 10);
-            if (end == value->c_str() || *end != '\0' || parsed < minimum || parsed > maximum) {
-                reportError(std::string("--") + name + " expects a whole number within " +
-                            std::to_string(minimum) + ".." + std::to_string(maximum));
-                return false;
-            }
-            target = int(parsed);
+        const Result<std::optional<int>> value =
+            wholeNumberOption(command, name, minimum, maximum,
+                              "expects a whole number within " + std::to_string(minimum) + ".." +
+                                  std::to_string(maximum),
+                              EchoValue::No);
+        if (!value) {
+            reportError(value.error().message);
+            return false;
         }
+        target = value.value().value_or(target);
         return true;
     };
     if (!integer("trees", 1, 10000000, options.trees) ||

@@ -10,7 +10,6 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
-#include <cstdlib>
 #include <optional>
 #include <string>
 #include <thread>
@@ -47,19 +46,16 @@ public:
     void error(const std::string& message) override { reportError(message); }
 };
 
-// `--name N` as a whole number in 1..100000000 (else `fallback`); false after
+// `--name N` as a whole number in 1..100000000 (left as it is when absent); false after
 // reporting a usage error.
 bool positiveInt(const ParsedCommandLine& command, const char* name, int& out) {
-    if (std::optional<std::string> text = command.get(name)) {
-        char* end = nullptr;
-        const long value = std::strtol(text->c_str(), &end, 10);
-        if (end == text->c_str() || *end != '\0' || value < 1 || value > 100000000) {
-            reportError(std::string("--") + name + " expects a positive whole number, got '" +
-                        *text + "'");
-            return false;
-        }
-        out = static_cast<int>(value);
+    const Result<std::optional<int>> value =
+        wholeNumberOption(command, name, 1, 100000000, "expects a positive whole number");
+    if (!value) {
+        reportError(value.error().message);
+        return false;
     }
+    out = value.value().value_or(out);
     return true;
 }
 

@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "sylva/bench/BenchmarkMetrics.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/plantlod/BillboardCloudBuilder.h"
@@ -210,35 +211,19 @@ const char* methodName(VegetationMethod method) {
     return "?";
 }
 
-}  // namespace
-
-std::string VegetationBenchmarkResult::json() const {
-    std::string out = "{\"suite\":\"vegetation\",\"metrics\":{";
-    bool first = true;
-    for (const auto& [name, value] : metrics) {
-        char buffer[128];
-        std::snprintf(buffer, sizeof buffer, "%s\"%s\":%.6g", first ? "" : ",", name.c_str(),
-                      value);
-        out += buffer;
-        first = false;
-    }
-    return out + "}}";
+void logProgress(const char* text) {
+    std::fprintf(stderr, "bench vegetation: %s\n", text);
 }
 
-Result<VegetationBenchmarkResult> runVegetationBenchmark(
-    const ShaderLibrary& library, const VegetationBenchmarkOptions& options) {
-    VegetationBenchmarkResult result;
-    const auto log = [](const char* text) { std::fprintf(stderr, "bench vegetation: %s\n", text); };
-
-    // The plant: a generated oak, its LoD and billboard clouds (not timed).
-    log("building the plant (generator, LoD, billboard clouds)");
+// The plant: a generated oak with `leaves` leaves, its LoD and billboard clouds.
+Result<std::shared_ptr<PlantAsset>> buildOak(int leaves) {
     Result<TreeParameters> preset = PlantGenerator::preset("oak");
     if (!preset) {
         return preset.error();
     }
     PlantGeneratorOptions generatorOptions;
     generatorOptions.seed = 1;
-    generatorOptions.leafCount = options.leaves;
+    generatorOptions.leafCount = leaves;
     Result<PlantModel> model = PlantGenerator::generate(preset.value(), generatorOptions);
     if (!model) {
         return model.error();
@@ -255,137 +240,215 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(
     asset->name = "oak";
     asset->model = std::move(model.value());
     asset->lod = std::move(lod.value());
+    return asset;
+}
 
-    const ConstantSource elevation("flat", kGround);
-    const ConstantSource color("meadow", glm::vec4(0.10f, 0.14f, 0.05f, 1.0f));
-    const NormalMapSource normals("flat.normals", &elevation, 1.0);
-    const TerrainLayers layers{&elevation, &color, &normals, {}};
-    TileEvaluator evaluator(TileFormat{256, 2});
-    TerrainSettings terrainSettings;
-    Result<std::unique_ptr<SceneRenderer>> created =
-        SceneRenderer::create(library, terrainSettings);
-    if (!created) {
-        return created.error();
+// Overview → descent → inside the forest → turn. The first group is at the centre.
+const std::vector<PathKey> kPath = {
+    {-2600.0, 0.0, 700.0, 0.0, -14.0 * kDegree},  // overview
+    {-1500.0, 0.0, 450.0, 0.0, -16.0 * kDegree},  // descent starts
+    {-160.0, 0.0, 12.0, 0.0, -2.0 * kDegree},     // at the forest edge
+    {-20.0, 0.0, 1.7, 0.0, 0.0},                  // inside the forest
+    {-20.0, 0.0, 1.7, std::numbers::pi, 0.0},     // turned around
+};
+constexpr double kSegmentSeconds = 5.0;  // path time per segment, for the 1/25 s step
+constexpr double kNextFrame = 1.0 / (25.0 * kSegmentSeconds);
+
+constexpr VegetationMethod kMethods[3] = {VegetationMethod::Lod, VegetationMethod::Billboard,
+                                          VegetationMethod::Mesh};
+
+// The flat meadow, the renderer with the oak as its one species, and timed frames.
+class ForestScene {
+public:
+    static Result<std::unique_ptr<ForestScene>> create(const ShaderLibrary& library,
+                                                       std::shared_ptr<PlantAsset> asset,
+                                                       const VegetationBenchmarkOptions& options) {
+        auto scene = std::unique_ptr<ForestScene>(new ForestScene(options));
+        Result<std::unique_ptr<SceneRenderer>> created =
+            SceneRenderer::create(library, TerrainSettings{});
+        if (!created) {
+            return created.error();
+        }
+        scene->renderer_ = std::move(created.value());
+        scene->species_ = scene->renderer_->vegetation().addSpecies(std::move(asset));
+        return scene;
     }
-    SceneRenderer& renderer = *created.value();
-    const std::uint32_t species = renderer.vegetation().addSpecies(asset);
-    const std::vector<SpeciesLod>& lods = renderer.vegetation().speciesLods();
 
-    // Overview → descent → inside the forest → turn. The first group is at the centre.
-    const std::vector<PathKey> keys = {
-        {-2600.0, 0.0, 700.0, 0.0, -14.0 * kDegree},  // overview
-        {-1500.0, 0.0, 450.0, 0.0, -16.0 * kDegree},  // descent starts
-        {-160.0, 0.0, 12.0, 0.0, -2.0 * kDegree},     // at the forest edge
-        {-20.0, 0.0, 1.7, 0.0, 0.0},                  // inside the forest
-        {-20.0, 0.0, 1.7, std::numbers::pi, 0.0},     // turned around
-    };
-    const int segments = int(keys.size()) - 1;
-    const int frames = segments * options.framesPerSegment + 1;
-    const double segmentSeconds = 5.0;  // path time per segment, for the 1/25 s step
-    const double nextFrame = 1.0 / (25.0 * segmentSeconds);
+    SceneRenderer& renderer() { return *renderer_; }
+    std::uint32_t species() const { return species_; }
+    const std::vector<SpeciesLod>& lods() { return renderer_->vegetation().speciesLods(); }
 
-    RenderSettings settings;
-    settings.width = options.width;
-    settings.height = options.height;
-    settings.sunDirection =
-        glm::normalize(Ellipsoid::surfaceNormal(kLatitude - 0.5, kLongitude - 0.6));
-    settings.atmosphere = true;
-    settings.ocean = false;
-
-    const std::vector<InstanceBatch> forest = makeForest(options.trees, species, lods, 7);
-    const auto renderTimed = [&](const Camera& c, const std::vector<const InstanceBatch*>& batches,
-                                 VegetationMethod method, double& seconds) -> Result<Image> {
-        settings.instanceBatches = batches;
-        settings.vegetation = VegetationSettings{};
-        settings.vegetation.method = method;
+    // Renders `batches` with `method` at `scale` times the frame size; the wall seconds
+    // of the render in `seconds`.
+    Result<Image> render(const Camera& c, const std::vector<const InstanceBatch*>& batches,
+                         VegetationMethod method, double& seconds, int scale = 1) {
+        settings_.width = options_.width * scale;
+        settings_.height = options_.height * scale;
+        settings_.instanceBatches = batches;
+        settings_.vegetation = VegetationSettings{};
+        settings_.vegetation.method = method;
         // The methods are compared as themselves: no mesh handover for the LoD.
-        settings.vegetation.closeUpMesh = false;
+        settings_.vegetation.closeUpMesh = false;
         const auto start = std::chrono::steady_clock::now();
-        Result<Image> image = renderer.render(layers, evaluator, c, settings);
+        Result<Image> image = renderer_->render(layers_, evaluator_, c, settings_);
         seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return image;
-    };
+    }
 
-    const VegetationMethod methods[3] = {VegetationMethod::Lod, VegetationMethod::Billboard,
-                                         VegetationMethod::Mesh};
+    // A warm-up frame without plants (fills the tile cache), then the seconds of the
+    // same frame without plants.
+    Result<double> bareSeconds(const Camera& c) {
+        double seconds = 0.0;
+        if (Result<Image> warm = render(c, {}, VegetationMethod::Lod, seconds); !warm) {
+            return warm.error();
+        }
+        double bare = 0.0;
+        if (Result<Image> empty = render(c, {}, VegetationMethod::Lod, bare); !empty) {
+            return empty.error();
+        }
+        return bare;
+    }
+
+private:
+    explicit ForestScene(const VegetationBenchmarkOptions& options)
+        : options_(options),
+          elevation_("flat", kGround),
+          color_("meadow", glm::vec4(0.10f, 0.14f, 0.05f, 1.0f)),
+          normals_("flat.normals", &elevation_, 1.0),
+          layers_{&elevation_, &color_, &normals_, {}},
+          evaluator_(TileFormat{256, 2}) {
+        settings_.sunDirection =
+            glm::normalize(Ellipsoid::surfaceNormal(kLatitude - 0.5, kLongitude - 0.6));
+        settings_.atmosphere = true;
+        settings_.ocean = false;
+    }
+
+    const VegetationBenchmarkOptions& options_;
+    const ConstantSource elevation_;
+    const ConstantSource color_;
+    const NormalMapSource normals_;
+    const TerrainLayers layers_;
+    TileEvaluator evaluator_;
+    RenderSettings settings_;
+    std::unique_ptr<SceneRenderer> renderer_;
+    std::uint32_t species_ = 0;
+};
+
+// Per method: the plants' milliseconds per frame, the error against the reference and
+// the temporal error on the sampled frames.
+struct MethodSamples {
     std::map<VegetationMethod, std::vector<double>> plantMilliseconds;
     std::map<VegetationMethod, std::vector<double>> referenceError, temporalError;
-    const bool haveBillboards = !lods[species].billboardError.empty();
+};
+
+bool methodRuns(VegetationMethod method, const VegetationBenchmarkOptions& options,
+                bool haveBillboards) {
+    switch (method) {
+        case VegetationMethod::Lod:
+            return options.lod;
+        case VegetationMethod::Billboard:
+            return haveBillboards && options.billboards;
+        case VegetationMethod::Mesh:
+            return options.mesh;
+    }
+    return false;
+}
+
+void logMethodFrame(const VegetationStatistics& drawn, VegetationMethod method,
+                    double plantMilliseconds, double bare) {
+    char detail[256];
+    std::snprintf(detail, sizeof detail,
+                  "  %s: %.0f ms (frame without plants %.0f ms); %zu instances, %zu "
+                  "ellipsoids, %zu lines, "
+                  "%zu meshes, %zu billboard clouds, select %.1f ms, %zu quad passes",
+                  methodName(method), plantMilliseconds, bare * 1000.0, drawn.drawnInstances,
+                  drawn.ellipsoids, drawn.lines, drawn.meshInstances, drawn.billboardInstances,
+                  drawn.selectSeconds * 1000.0, drawn.quadPassRuns);
+    logProgress(detail);
+}
+
+// Frame `frame` (path time `t`) with `method`: timed against `bare`, written to the
+// frames folder, and on sampled frames (non-empty `reference`) compared with the
+// reference and with the frame 1/25 s later.
+Status measureMethod(ForestScene& scene, const std::vector<const InstanceBatch*>& forest,
+                     VegetationMethod method, int frame, double t, double bare,
+                     const std::vector<float>& reference, const VegetationBenchmarkOptions& options,
+                     MethodSamples& samples) {
+    double seconds = 0.0;
+    Result<Image> image = scene.render(cameraAt(kPath, t), forest, method, seconds);
+    if (!image) {
+        return image.error();
+    }
+    samples.plantMilliseconds[method].push_back(std::max(0.0, seconds - bare) * 1000.0);
+    logMethodFrame(scene.renderer().vegetation().statistics(), method,
+                   samples.plantMilliseconds[method].back(), bare);
+    if (!options.framesFolder.empty()) {
+        char name[64];
+        std::snprintf(name, sizeof name, "/frame%02d_%s.png", frame, methodName(method));
+        (void)ImageWriter::writeRgba8(options.framesFolder + name, image.value().width,
+                                      image.value().height, image.value().pixels);
+    }
+    if (reference.empty()) {
+        return {};
+    }
+    const std::vector<float> current = luminance(image.value(), 1);
+    samples.referenceError[method].push_back(
+        frameError(current, reference, options.width, options.height));
+    Result<Image> next = scene.render(cameraAt(kPath, t + kNextFrame), forest, method, seconds);
+    if (!next) {
+        return next.error();
+    }
+    samples.temporalError[method].push_back(
+        frameError(current, luminance(next.value(), 1), options.width, options.height));
+    return {};
+}
+
+// Every frame of the path with every method that runs.
+Status measurePath(ForestScene& scene, const std::vector<InstanceBatch>& forest, int frames,
+                   const VegetationBenchmarkOptions& options, MethodSamples& samples) {
+    const bool haveBillboards = !scene.lods()[scene.species()].billboardError.empty();
     if (!options.framesFolder.empty()) {
         std::filesystem::create_directories(options.framesFolder);
     }
     for (int frame = 0; frame < frames; ++frame) {
         const double t = double(frame) / options.framesPerSegment;
-        const Camera c = cameraAt(keys, t);
+        const Camera c = cameraAt(kPath, t);
         char line[96];
         std::snprintf(line, sizeof line, "frame %d/%d", frame + 1, frames);
-        log(line);
-        double seconds = 0.0;
-        // Warm-up (fills the tile cache), then the frame without plants.
-        if (Result<Image> warm = renderTimed(c, {}, VegetationMethod::Lod, seconds); !warm) {
-            return warm.error();
+        logProgress(line);
+        Result<double> bare = scene.bareSeconds(c);
+        if (!bare) {
+            return bare.error();
         }
-        double bare = 0.0;
-        if (Result<Image> empty = renderTimed(c, {}, VegetationMethod::Lod, bare); !empty) {
-            return empty.error();
-        }
+        // Every method's segment ends (but the start) are compared with the mesh
+        // rendered at referenceScale times the resolution, box-filtered down.
         const bool sampled = frame % options.framesPerSegment == 0 && frame > 0 && options.mesh;
         std::vector<float> reference;
         if (sampled) {
-            settings.width = options.width * options.referenceScale;
-            settings.height = options.height * options.referenceScale;
-            Result<Image> image = renderTimed(c, pointers(forest), VegetationMethod::Mesh, seconds);
-            settings.width = options.width;
-            settings.height = options.height;
+            double seconds = 0.0;
+            Result<Image> image = scene.render(c, pointers(forest), VegetationMethod::Mesh, seconds,
+                                               options.referenceScale);
             if (!image) {
                 return image.error();
             }
             reference = luminance(image.value(), options.referenceScale);
         }
-        for (VegetationMethod method : methods) {
-            if ((method == VegetationMethod::Billboard &&
-                 (!haveBillboards || !options.billboards)) ||
-                (method == VegetationMethod::Lod && !options.lod) ||
-                (method == VegetationMethod::Mesh && !options.mesh)) {
+        for (VegetationMethod method : kMethods) {
+            if (!methodRuns(method, options, haveBillboards)) {
                 continue;
             }
-            Result<Image> image = renderTimed(c, pointers(forest), method, seconds);
-            if (!image) {
-                return image.error();
+            if (Status measured = measureMethod(scene, pointers(forest), method, frame, t,
+                                                bare.value(), reference, options, samples);
+                !measured) {
+                return measured;
             }
-            plantMilliseconds[method].push_back(std::max(0.0, seconds - bare) * 1000.0);
-            const VegetationStatistics& drawn = renderer.vegetation().statistics();
-            char detail[256];
-            std::snprintf(detail, sizeof detail,
-                          "  %s: %.0f ms (frame without plants %.0f ms); %zu instances, %zu "
-                          "ellipsoids, %zu lines, "
-                          "%zu meshes, %zu billboard clouds, select %.1f ms, %zu quad passes",
-                          methodName(method), plantMilliseconds[method].back(), bare * 1000.0,
-                          drawn.drawnInstances, drawn.ellipsoids, drawn.lines, drawn.meshInstances,
-                          drawn.billboardInstances, drawn.selectSeconds * 1000.0,
-                          drawn.quadPassRuns);
-            log(detail);
-            if (!options.framesFolder.empty()) {
-                char name[64];
-                std::snprintf(name, sizeof name, "/frame%02d_%s.png", frame, methodName(method));
-                (void)ImageWriter::writeRgba8(options.framesFolder + name, image.value().width,
-                                              image.value().height, image.value().pixels);
-            }
-            if (!sampled) {
-                continue;
-            }
-            const std::vector<float> current = luminance(image.value(), 1);
-            referenceError[method].push_back(
-                frameError(current, reference, options.width, options.height));
-            Result<Image> next =
-                renderTimed(cameraAt(keys, t + nextFrame), pointers(forest), method, seconds);
-            if (!next) {
-                return next.error();
-            }
-            temporalError[method].push_back(
-                frameError(current, luminance(next.value(), 1), options.width, options.height));
         }
     }
+    return {};
+}
+
+// Metrics of the methods that ran (all of them unless the options leave some out).
+void addMethodMetrics(MethodSamples& samples, std::map<std::string, double>& metrics) {
     const auto mean = [](const std::vector<double>& v) {
         double s = 0.0;
         for (double x : v) {
@@ -393,73 +456,123 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(
         }
         return v.empty() ? 0.0 : s / double(v.size());
     };
-    // Metrics of the methods that ran (all of them unless the options leave some out).
-    const auto ran = [&](VegetationMethod method) { return !plantMilliseconds[method].empty(); };
-    for (VegetationMethod method : methods) {
+    const auto ran = [&](VegetationMethod method) {
+        return !samples.plantMilliseconds[method].empty();
+    };
+    for (VegetationMethod method : kMethods) {
         if (!ran(method)) {
             continue;
         }
         const std::string name = methodName(method);
-        result.metrics[name + "_ms_median"] = median(plantMilliseconds[method]);
-        if (!referenceError[method].empty()) {
-            result.metrics["rmse_ref_" + name] = mean(referenceError[method]);
-            result.metrics["temporal_" + name] = mean(temporalError[method]);
+        metrics[name + "_ms_median"] = median(samples.plantMilliseconds[method]);
+        if (!samples.referenceError[method].empty()) {
+            metrics["rmse_ref_" + name] = mean(samples.referenceError[method]);
+            metrics["temporal_" + name] = mean(samples.temporalError[method]);
         }
     }
     const auto ratio = [&](const char* key, VegetationMethod slower) {
         if (ran(VegetationMethod::Lod) && ran(slower)) {
-            result.metrics[key] = result.metrics[std::string(methodName(slower)) + "_ms_median"] /
-                                  std::max(result.metrics["lod_ms_median"], 1e-6);
+            metrics[key] = metrics[std::string(methodName(slower)) + "_ms_median"] /
+                           std::max(metrics["lod_ms_median"], 1e-6);
         }
     };
     ratio("lod_vs_mesh", VegetationMethod::Mesh);
     ratio("lod_vs_bbc", VegetationMethod::Billboard);
+}
+
+// The selection alone (CPU) of `batches`, from every segment's midpoint, three times:
+// its median milliseconds and the visible instances of the last selection.
+std::pair<double, double> selectionMilliseconds(const std::vector<InstanceBatch>& batches,
+                                                const std::vector<SpeciesLod>& lods,
+                                                const VegetationBenchmarkOptions& options) {
+    const int segments = int(kPath.size()) - 1;
+    LodSelectionSettings selection;
+    selection.pixelAngle = 2.0 * std::tan(25.0 * kDegree) / options.height;
+    LodSelector::setFrustum(selection, 50.0 * kDegree, double(options.width) / options.height);
+    LodSelection out;
+    std::vector<double> selectMilliseconds;
+    for (int run = 0; run < 3; ++run) {
+        for (int segment = 1; segment <= segments; ++segment) {
+            const Camera c = cameraAt(kPath, double(segment) - 0.5);
+            const auto start = std::chrono::steady_clock::now();
+            LodSelector::select(pointers(batches), lods, c, selection, out);
+            selectMilliseconds.push_back(
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                    .count());
+        }
+    }
+    return {median(selectMilliseconds), double(out.visibleInstances)};
+}
+
+// The LoD method with 100,000 and 1,000,000 instances, from every segment's midpoint,
+// and the selection alone of the million.
+Status measureScaling(ForestScene& scene, const VegetationBenchmarkOptions& options,
+                      std::map<std::string, double>& metrics) {
+    const int segments = int(kPath.size()) - 1;
+    for (const int count : {100000, 1000000}) {
+        char line[96];
+        std::snprintf(line, sizeof line, "scaling: %d instances", count);
+        logProgress(line);
+        const std::vector<InstanceBatch> many =
+            makeForest(count, scene.species(), scene.lods(), 11);
+        std::vector<double> milliseconds;
+        for (int segment = 1; segment <= segments; ++segment) {
+            const Camera c = cameraAt(kPath, double(segment) - 0.5);
+            double bare = 0.0, seconds = 0.0;
+            (void)scene.render(c, {}, VegetationMethod::Lod, seconds);
+            (void)scene.render(c, {}, VegetationMethod::Lod, bare);
+            Result<Image> image = scene.render(c, pointers(many), VegetationMethod::Lod, seconds);
+            if (!image) {
+                return image.error();
+            }
+            milliseconds.push_back(std::max(0.0, seconds - bare) * 1000.0);
+        }
+        metrics[count == 100000 ? "lod_ms_100k" : "lod_ms_1m"] = median(milliseconds);
+        if (count == 1000000) {
+            const auto [select, visible] = selectionMilliseconds(many, scene.lods(), options);
+            metrics["select_ms_1m"] = select;
+            metrics["select_visible_1m"] = visible;
+        }
+    }
+    return {};
+}
+
+}  // namespace
+
+std::string VegetationBenchmarkResult::json() const {
+    return metricsJson("vegetation", metrics, {NumberFormat::Notation::General, 6});
+}
+
+Result<VegetationBenchmarkResult> runVegetationBenchmark(
+    const ShaderLibrary& library, const VegetationBenchmarkOptions& options) {
+    // The plant: a generated oak, its LoD and billboard clouds (not timed).
+    logProgress("building the plant (generator, LoD, billboard clouds)");
+    Result<std::shared_ptr<PlantAsset>> asset = buildOak(options.leaves);
+    if (!asset) {
+        return asset.error();
+    }
+    Result<std::unique_ptr<ForestScene>> scene =
+        ForestScene::create(library, asset.value(), options);
+    if (!scene) {
+        return scene.error();
+    }
+    const int frames = (int(kPath.size()) - 1) * options.framesPerSegment + 1;
+    const std::vector<InstanceBatch> forest =
+        makeForest(options.trees, scene.value()->species(), scene.value()->lods(), 7);
+    MethodSamples samples;
+    if (Status measured = measurePath(*scene.value(), forest, frames, options, samples);
+        !measured) {
+        return measured.error();
+    }
+    VegetationBenchmarkResult result;
+    addMethodMetrics(samples, result.metrics);
     result.metrics["trees"] = options.trees;
     result.metrics["frames"] = frames;
-    result.metrics["lod_ellipsoids"] = double(asset->lod.ellipsoids.size());
-    result.metrics["lod_lines"] = double(asset->lod.lines.size());
-
+    result.metrics["lod_ellipsoids"] = double(asset.value()->lod.ellipsoids.size());
+    result.metrics["lod_lines"] = double(asset.value()->lod.lines.size());
     if (options.scaling && options.lod) {
-        for (const int count : {100000, 1000000}) {
-            char line[96];
-            std::snprintf(line, sizeof line, "scaling: %d instances", count);
-            log(line);
-            const std::vector<InstanceBatch> many = makeForest(count, species, lods, 11);
-            std::vector<double> milliseconds;
-            for (int segment = 1; segment <= segments; ++segment) {
-                const Camera c = cameraAt(keys, double(segment) - 0.5);
-                double bare = 0.0, seconds = 0.0;
-                (void)renderTimed(c, {}, VegetationMethod::Lod, seconds);
-                (void)renderTimed(c, {}, VegetationMethod::Lod, bare);
-                Result<Image> image =
-                    renderTimed(c, pointers(many), VegetationMethod::Lod, seconds);
-                if (!image) {
-                    return image.error();
-                }
-                milliseconds.push_back(std::max(0.0, seconds - bare) * 1000.0);
-            }
-            result.metrics[count == 100000 ? "lod_ms_100k" : "lod_ms_1m"] = median(milliseconds);
-            if (count == 1000000) {
-                // The selection alone (CPU), from every segment's midpoint.
-                LodSelectionSettings selection;
-                selection.pixelAngle = 2.0 * std::tan(25.0 * kDegree) / options.height;
-                LodSelector::setFrustum(selection, 50.0 * kDegree,
-                                        double(options.width) / options.height);
-                LodSelection out;
-                std::vector<double> selectMilliseconds;
-                for (int run = 0; run < 3; ++run) {
-                    for (int segment = 1; segment <= segments; ++segment) {
-                        const Camera c = cameraAt(keys, double(segment) - 0.5);
-                        const auto start = std::chrono::steady_clock::now();
-                        LodSelector::select(pointers(many), lods, c, selection, out);
-                        selectMilliseconds.push_back(std::chrono::duration<double, std::milli>(
-                                                         std::chrono::steady_clock::now() - start)
-                                                         .count());
-                    }
-                }
-                result.metrics["select_ms_1m"] = median(selectMilliseconds);
-                result.metrics["select_visible_1m"] = double(out.visibleInstances);
-            }
+        if (Status measured = measureScaling(*scene.value(), options, result.metrics); !measured) {
+            return measured.error();
         }
     }
     return result;
