@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "sylva/core/base/Check.h"
 #include "sylva/dsl/ProjectLoader.h"
 
 namespace sylva::app {
@@ -32,6 +33,14 @@ void printDiagnostics(const dsl::LoadResult& loaded) {
     }
 }
 
+std::vector<ProjectModel> scenarioModels(dsl::LoadResult&& loaded) {
+    SYLVA_CHECK(!loaded.hasErrors() && loaded.model.has_value());
+    if (loaded.scenarios.empty()) {
+        return {std::move(*loaded.model)};
+    }
+    return std::move(loaded.scenarios);
+}
+
 std::optional<ProjectSession> ProjectSession::open(
     const std::filesystem::path& file,
     const std::vector<std::pair<std::string, std::string>>& defines) {
@@ -42,38 +51,25 @@ std::optional<ProjectSession> ProjectSession::open(
     if (loaded.hasErrors() || !loaded.model) {
         return std::nullopt;
     }
-    ProjectSession session;
-    session.model = std::move(*loaded.model);
-    session.scenarios = std::move(loaded.scenarios);
-    Result<SourceGraph> graph = SourceGraph::build(session.model);
-    if (!graph) {
-        reportError(graph.error().message);
+    Result<ScenarioGraphs> graphs = ScenarioGraphs::build(scenarioModels(std::move(loaded)));
+    if (!graphs) {
+        reportError(graphs.error().message);
         return std::nullopt;
     }
-    session.graph.emplace(std::move(graph.value()));
+    ProjectSession session;
+    session.model = graphs->defaultModel();
+    session.graphs.emplace(std::move(graphs.value()));
+    session.graph = session.graphs->scenario("")->graph;
     return session;
 }
 
 Result<std::pair<const ProjectModel*, SourceGraph*>> ProjectSession::forScenario(
     const std::string& scenario) {
-    const ProjectModel* scenarioModel = nullptr;
-    for (const ProjectModel& candidate : scenarios) {
-        if (candidate.scenario == scenario) {
-            scenarioModel = &candidate;
-        }
+    Result<ScenarioGraph> found = graphs->scenario(scenario);
+    if (!found) {
+        return found.error();
     }
-    if (scenario.empty() || scenarioModel == nullptr || scenarioModel == &scenarios.front()) {
-        return std::make_pair(static_cast<const ProjectModel*>(&model), &*graph);
-    }
-    auto it = scenarioGraphs.find(scenario);
-    if (it == scenarioGraphs.end()) {
-        Result<SourceGraph> built = SourceGraph::build(*scenarioModel);
-        if (!built) {
-            return built.error();
-        }
-        it = scenarioGraphs.emplace(scenario, std::move(built.value())).first;
-    }
-    return std::make_pair(scenarioModel, &it->second);
+    return std::make_pair(found->model, found->graph);
 }
 
 }  // namespace sylva::app

@@ -60,7 +60,7 @@ int runTurnaroundBench(const std::vector<std::string>& arguments) {
         return 1;
     }
     const Result<bench::TurnaroundBenchmarkResult> result =
-        bench::runTurnaroundBenchmark(options, session->model, session->scenarios);
+        bench::runTurnaroundBenchmark(options, session->model, session->graphs->models());
     if (!result) {
         reportError("bench turnaround: " + result.error().message);
         return 1;

@@ -50,19 +50,25 @@ inline Comparison compareImages(const std::vector<std::uint8_t>& a,
     return result;
 }
 
-// Compares `pixels` (RGBA8, width × height) with tests/render/goldens/<name>.png.
-inline void checkGolden(const std::string& name, int width, int height,
-                        const std::vector<std::uint8_t>& pixels, double rmseLimit = 2.0,
-                        int maxLimit = 96) {
-    ASSERT_EQ(pixels.size(), std::size_t(width) * height * 4);
-    const std::filesystem::path golden =
-        std::filesystem::path(SYLVA_TEST_DATA_DIR) / "render" / "goldens" / (name + ".png");
-    const std::filesystem::path outputs = std::filesystem::path(SYLVA_TEST_OUTPUT_DIR);
+inline std::filesystem::path goldenPath(const std::string& name) {
+    return std::filesystem::path(SYLVA_TEST_DATA_DIR) / "render" / "goldens" / (name + ".png");
+}
+
+// Whether this run rewrites the goldens (SYLVA_UPDATE_GOLDENS=1, `make goldens`).
+inline bool updatingGoldens() {
     const char* update = std::getenv("SYLVA_UPDATE_GOLDENS");
-    if (update != nullptr && std::string(update) == "1") {
-        ASSERT_TRUE(ImageWriter::writeRgba8(golden, width, height, pixels));
-        GTEST_SKIP() << "golden image updated: " << golden;
-    }
+    return update != nullptr && std::string(update) == "1";
+}
+
+// Compares `pixels` (RGBA8, width × height) with tests/render/goldens/<name>.png and never
+// rewrites it: for images that another test's render defines (e.g. the example program's
+// output against the demo golden).
+inline void expectMatchesGolden(const std::string& name, int width, int height,
+                                const std::vector<std::uint8_t>& pixels, double rmseLimit = 2.0,
+                                int maxLimit = 96) {
+    ASSERT_EQ(pixels.size(), std::size_t(width) * height * 4);
+    const std::filesystem::path golden = goldenPath(name);
+    const std::filesystem::path outputs = std::filesystem::path(SYLVA_TEST_OUTPUT_DIR);
     int goldenWidth = 0, goldenHeight = 0;
     Result<std::vector<std::uint8_t>> expected =
         ImageWriter::readRgba8(golden, goldenWidth, goldenHeight);
@@ -80,6 +86,20 @@ inline void checkGolden(const std::string& name, int width, int height,
     EXPECT_TRUE(ok) << name << ": RMSE " << c.rmse << " (limit " << rmseLimit << "), max error "
                     << c.maxError << " (limit " << maxLimit << "); actual and diff written to "
                     << outputs;
+}
+
+// Compares `pixels` (RGBA8, width × height) with tests/render/goldens/<name>.png, or with
+// SYLVA_UPDATE_GOLDENS=1 writes them as the new golden.
+inline void checkGolden(const std::string& name, int width, int height,
+                        const std::vector<std::uint8_t>& pixels, double rmseLimit = 2.0,
+                        int maxLimit = 96) {
+    ASSERT_EQ(pixels.size(), std::size_t(width) * height * 4);
+    if (updatingGoldens()) {
+        const std::filesystem::path golden = goldenPath(name);
+        ASSERT_TRUE(ImageWriter::writeRgba8(golden, width, height, pixels));
+        GTEST_SKIP() << "golden image updated: " << golden;
+    }
+    expectMatchesGolden(name, width, height, pixels, rmseLimit, maxLimit);
 }
 
 }  // namespace sylva::golden

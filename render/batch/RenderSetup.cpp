@@ -1,0 +1,66 @@
+#include "sylva/render/batch/RenderSetup.h"
+
+#include <string>
+
+#include "sylva/core/geo/Ellipsoid.h"
+#include "sylva/core/model/BlockReader.h"
+
+namespace sylva::render {
+namespace {
+
+// The render block's `resolution = [width, height]` into `settings`.
+Status readResolution(BlockReader& renderBlock, RenderSettings& settings) {
+    const Value* resolution = renderBlock.value("resolution");
+    if (resolution == nullptr) {
+        return {};
+    }
+    const ValueList* list = resolution->get<ValueList>();
+    if (list == nullptr || list->size() != 2 || !(*list)[0].get<Quantity>() ||
+        !(*list)[1].get<Quantity>()) {
+        return Error{renderBlock.where("resolution") + "resolution must be [width, height]"};
+    }
+    settings.width = static_cast<int>((*list)[0].get<Quantity>()->value);
+    settings.height = static_cast<int>((*list)[1].get<Quantity>()->value);
+    if (settings.width < 1 || settings.height < 1 || settings.width > 16384 ||
+        settings.height > 16384) {
+        return Error{renderBlock.where("resolution") + "resolution must be within 1..16384 pixels"};
+    }
+    return {};
+}
+
+}  // namespace
+
+Result<RenderSetup> RenderSetup::fromModel(const ProjectModel& model, int overrideWidth,
+                                           int overrideHeight) {
+    BlockReader renderBlock(model.render, SchemaRegistry::builtin().find("render"));
+    RenderSetup setup;
+    RenderSettings& settings = setup.settings;
+    if (overrideWidth > 0) {
+        settings.width = overrideWidth;
+        settings.height = overrideHeight;
+    } else if (Status read = readResolution(renderBlock, settings); !read) {
+        return read.error();
+    }
+    const GeoPosition sun = renderBlock.geo("sun").value_or(GeoPosition{0.4, 0.35, std::nullopt});
+    setup.defaultSun = Ellipsoid::surfaceNormal(sun.latitude, sun.longitude);
+    settings.sunDirection = setup.defaultSun;
+    settings.atmosphere = renderBlock.boolean("atmosphere", true);
+    settings.ocean = renderBlock.boolean("ocean", true);
+    settings.exposure = renderBlock.optionalNumber("exposure").value_or(1.0);
+    setup.terrain.maxLevel = static_cast<int>(renderBlock.optionalNumber("max_level").value_or(24));
+    setup.cacheMegabytes =
+        static_cast<std::size_t>(renderBlock.optionalNumber("cache_mb").value_or(1024));
+    const Value* vegetationValue = renderBlock.value("vegetation");
+    const std::string vegetation = vegetationValue && vegetationValue->get<Word>()
+                                       ? vegetationValue->get<Word>()->text
+                                       : "lod";
+    settings.vegetation.method = vegetation == "mesh"         ? VegetationMethod::Mesh
+                                 : vegetation == "billboards" ? VegetationMethod::Billboard
+                                                              : VegetationMethod::Lod;
+    settings.vegetation.quality = renderBlock.optionalNumber("vegetation_quality").value_or(1.0);
+    settings.vegetation.maximumDistance =
+        renderBlock.optionalNumber("vegetation_distance").value_or(6000.0);
+    return setup;
+}
+
+}  // namespace sylva::render
