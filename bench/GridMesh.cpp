@@ -48,35 +48,20 @@ Result<GridMesh> GridMesh::create(const ShaderLibrary& library, const ElevationG
         }
     });
     mesh.indexCount_ = indices.size();
-    glCreateVertexArrays(1, &mesh.vertexArray_);
-    glCreateBuffers(2, mesh.buffers_);
-    glNamedBufferStorage(mesh.buffers_[0], GLsizeiptr(positions.size() * sizeof(float)),
+    mesh.vertexArray_ = render::createGlVertexArray();
+    mesh.vertexBuffer_ = render::createGlBuffer();
+    mesh.indexBuffer_ = render::createGlBuffer();
+    const GLuint vertexArray = mesh.vertexArray_.get();
+    glNamedBufferStorage(mesh.vertexBuffer_.get(), GLsizeiptr(positions.size() * sizeof(float)),
                          positions.data(), 0);
-    glNamedBufferStorage(mesh.buffers_[1], GLsizeiptr(indices.size() * sizeof(std::uint32_t)),
-                         indices.data(), 0);
-    glVertexArrayVertexBuffer(mesh.vertexArray_, 0, mesh.buffers_[0], 0, 3 * sizeof(float));
-    glVertexArrayElementBuffer(mesh.vertexArray_, mesh.buffers_[1]);
-    glEnableVertexArrayAttrib(mesh.vertexArray_, 0);
-    glVertexArrayAttribFormat(mesh.vertexArray_, 0, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(mesh.vertexArray_, 0, 0);
+    glNamedBufferStorage(mesh.indexBuffer_.get(),
+                         GLsizeiptr(indices.size() * sizeof(std::uint32_t)), indices.data(), 0);
+    glVertexArrayVertexBuffer(vertexArray, 0, mesh.vertexBuffer_.get(), 0, 3 * sizeof(float));
+    glVertexArrayElementBuffer(vertexArray, mesh.indexBuffer_.get());
+    glEnableVertexArrayAttrib(vertexArray, 0);
+    glVertexArrayAttribFormat(vertexArray, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vertexArray, 0, 0);
     return mesh;
-}
-
-GridMesh& GridMesh::operator=(GridMesh&& other) noexcept {
-    std::swap(program_, other.program_);
-    std::swap(vertexArray_, other.vertexArray_);
-    std::swap(buffers_[0], other.buffers_[0]);
-    std::swap(buffers_[1], other.buffers_[1]);
-    indexCount_ = other.indexCount_;
-    centre_ = other.centre_;
-    return *this;
-}
-
-GridMesh::~GridMesh() {
-    if (vertexArray_ != 0) {
-        glDeleteVertexArrays(1, &vertexArray_);
-        glDeleteBuffers(2, buffers_);
-    }
 }
 
 void GridMesh::draw(const Camera& camera, const glm::dmat4& projection) {
@@ -87,7 +72,7 @@ void GridMesh::draw(const Camera& camera, const glm::dmat4& projection) {
     program_.use();
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_GREATER);
-    glBindVertexArray(vertexArray_);
+    glBindVertexArray(vertexArray_.get());
     glDrawElements(GL_TRIANGLES, GLsizei(indexCount_), GL_UNSIGNED_INT, nullptr);
     glBindVertexArray(0);
 }

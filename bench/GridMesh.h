@@ -12,6 +12,7 @@
 #include "GridElevationSource.h"
 #include "sylva/core/base/Result.h"
 #include "sylva/core/scene/Camera.h"
+#include "sylva/render/gl/GlHandle.h"
 #include "sylva/render/gl/ShaderLibrary.h"
 #include "sylva/render/gl/ShaderProgram.h"
 
@@ -23,18 +24,16 @@ public:
     // point vertices are stored relative to (metres). Fails if the shaders do not build.
     static Result<GridMesh> create(const render::ShaderLibrary& library, const ElevationGrid& grid,
                                    const glm::dvec3& centre);
-    GridMesh() = default;
-    GridMesh(GridMesh&& other) noexcept { *this = std::move(other); }
-    GridMesh& operator=(GridMesh&& other) noexcept;
-    ~GridMesh();
+    GridMesh() = default;  // move-only: the GL objects are GlHandles
 
     std::size_t triangles() const { return indexCount_ / 3; }
     void draw(const Camera& camera, const glm::dmat4& projection);
 
 private:
     render::ShaderProgram program_;
-    std::uint32_t vertexArray_ = 0;
-    std::uint32_t buffers_[2] = {0, 0};
+    render::GlVertexArray vertexArray_;
+    render::GlBuffer vertexBuffer_;
+    render::GlBuffer indexBuffer_;
     std::size_t indexCount_ = 0;
     glm::dvec3 centre_{};
 };

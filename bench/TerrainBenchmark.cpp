@@ -27,6 +27,10 @@
 namespace sylva::bench {
 
 using namespace sylva::render;
+// The rendered frame, not sylva::Image<Channel> (which the directive above would make
+// ambiguous).
+using render::Image;
+
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;

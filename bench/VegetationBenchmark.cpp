@@ -26,6 +26,9 @@
 namespace sylva::bench {
 
 using namespace sylva::render;
+// The rendered frame, not sylva::Image<Channel> (which the directive above would make
+// ambiguous).
+using render::Image;
 
 namespace {
 

@@ -121,15 +121,7 @@ bool BitmapFont::pixel(char character, int column, int row) {
 void BitmapFont::draw(RgbaImage& image, int x, int y, std::string_view text, int scale,
                       const std::uint8_t rgb[3], const std::uint8_t* background) {
     auto fill = [&](int x0, int y0, int x1, int y1, const std::uint8_t colour[3]) {
-        for (int py = std::max(y0, 0); py < std::min(y1, image.height); ++py) {
-            for (int px = std::max(x0, 0); px < std::min(x1, image.width); ++px) {
-                std::uint8_t* p = image.at(px, py);
-                p[0] = colour[0];
-                p[1] = colour[1];
-                p[2] = colour[2];
-                p[3] = 255;
-            }
-        }
+        fillPixels(image, x0, y0, x1, y1, {colour[0], colour[1], colour[2], 255});
     };
     if (background) {
         fill(x - scale, y - scale, x + textWidth(text, scale), y + (kGlyphHeight + 1) * scale,

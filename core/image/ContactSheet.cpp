@@ -84,10 +84,7 @@ Result<RgbaImage> ContactSheet::build(const std::vector<ContactSheetEntry>& entr
             std::max(1, static_cast<int>(std::lround(static_cast<double>(thumbnailWidth) *
                                                      entry.image.height / entry.image.width)));
         const RgbaImage thumbnail = resize(entry.image, thumbnailWidth, height);
-        for (int row = 0; row < thumbnail.height; ++row) {
-            std::copy_n(thumbnail.at(0, row), static_cast<std::size_t>(thumbnail.width) * 4,
-                        sheet.at(x, y + row));
-        }
+        copyPixels(thumbnail, 0, 0, thumbnail.width, thumbnail.height, sheet, x, y);
         // Labels longer than the thumbnail are cut with an ellipsis.
         std::string caption = entry.label;
         const std::size_t fits =

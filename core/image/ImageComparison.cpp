@@ -13,7 +13,8 @@
 namespace sylva {
 namespace {
 
-Status sameSize(const RgbaImage& a, const RgbaImage& b) {
+template <typename Channel>
+Status sameSize(const Image<Channel>& a, const Image<Channel>& b) {
     if (a.width != b.width || a.height != b.height) {
         return Error{"cannot compare images of different sizes (" + std::to_string(a.width) + "x" +
                      std::to_string(a.height) + " and " + std::to_string(b.width) + "x" +
@@ -34,29 +35,39 @@ const std::array<float, 256>& decodeTable() {
     return table;
 }
 
-std::uint8_t encode(float linear) {
-    return static_cast<std::uint8_t>(
-        std::lround(std::clamp(linearToSrgb(linear), 0.0f, 1.0f) * 255.0f));
-}
+// How each image type stores what the comparisons compute: linear colour in and out,
+// mixed alpha, and the stored value of a drawn sRGB grey (divider, gutter).
+template <typename Channel>
+struct Coding;
 
-template <typename Image>
-int labelScale(const Image& image) {
-    return std::max(1, std::min(image.width, image.height) / 240);
-}
-
-Status sameSize(const LinearImage& a, const LinearImage& b) {
-    if (a.width != b.width || a.height != b.height) {
-        return Error{"cannot compare images of different sizes (" + std::to_string(a.width) + "x" +
-                     std::to_string(a.height) + " and " + std::to_string(b.width) + "x" +
-                     std::to_string(b.height) + ")"};
+template <>
+struct Coding<std::uint8_t> {
+    static float linear(std::uint8_t value) { return decodeTable()[value]; }
+    static std::uint8_t encode(float linear) {
+        return static_cast<std::uint8_t>(
+            std::lround(std::clamp(linearToSrgb(linear), 0.0f, 1.0f) * 255.0f));
     }
-    return {};
+    static std::uint8_t alpha(float mixed) { return static_cast<std::uint8_t>(std::lround(mixed)); }
+    static std::uint8_t grey(std::uint8_t srgb) { return srgb; }
+};
+
+// Radiance is already linear; drawings are stored as the radiance that displays as them.
+template <>
+struct Coding<float> {
+    static float linear(float value) { return value; }
+    static float encode(float linear) { return linear; }
+    static float alpha(float mixed) { return mixed; }
+    static float grey(std::uint8_t srgb) { return ToneMapping::radiance(srgb); }
+};
+
+template <typename Channel>
+std::array<Channel, 4> greyPixel(std::uint8_t srgb) {
+    const Channel value = Coding<Channel>::grey(srgb);
+    return {value, value, value, Image<Channel>::kOpaque};
 }
 
-// The radiance that displays as this sRGB grey (for drawn overlays).
-void setGrey(float* pixel, std::uint8_t srgb) {
-    pixel[0] = pixel[1] = pixel[2] = ToneMapping::radiance(srgb);
-    pixel[3] = 1.0f;
+int labelScale(const RgbaImage& image) {
+    return std::max(1, std::min(image.width, image.height) / 240);
 }
 
 // Copies every pixel the 8-bit `overlay` drew (alpha 255) into `image` as radiance.
@@ -75,75 +86,103 @@ void applyOverlay(LinearImage& image, const RgbaImage& overlay) {
     }
 }
 
+// The legend of a difference image: the heat ramp along the bottom with its scale.
+void drawLegend(RgbaImage& out, double maximumDeltaE) {
+    const int scale = labelScale(out);
+    const int barHeight = 6 * scale;
+    const int margin = 4 * scale;
+    const int textHeight = BitmapFont::textHeight(scale);
+    const int top = out.height - margin - barHeight - textHeight;
+    const int left = margin;
+    const int right = std::max(left + 1, out.width / 3);
+    if (top <= 0 || right <= left + 8) {
+        return;
+    }
+    fillPixels(out, 0, top - margin, right + margin * 6, out.height, {12, 12, 12, 255});
+    for (int x = left; x < right; ++x) {
+        std::uint8_t rgb[3];
+        ImageComparison::heatColor(static_cast<double>(x - left) / (right - 1 - left), rgb);
+        fillPixels(out, x, top, x + 1, top + barHeight, {rgb[0], rgb[1], rgb[2], 255});
+    }
+    const std::uint8_t white[3] = {235, 235, 235};
+    char text[32];
+    BitmapFont::draw(out, left, top + barHeight + scale, "0", scale, white);
+    std::snprintf(text, sizeof text, "%g", maximumDeltaE / 2);
+    BitmapFont::draw(out, (left + right) / 2 - BitmapFont::textWidth(text, scale) / 2,
+                     top + barHeight + scale, text, scale, white);
+    std::snprintf(text, sizeof text, "%g dE00", maximumDeltaE);
+    BitmapFont::draw(
+        out, right - BitmapFont::textWidth(std::to_string(static_cast<int>(maximumDeltaE)), scale),
+        top + barHeight + scale, text, scale, white);
+}
+
 }  // namespace
 
-Result<RgbaImage> ImageComparison::blend(const RgbaImage& from, const RgbaImage& to,
-                                         double amount) {
+template <typename Channel>
+Result<Image<Channel>> ImageComparison::blend(const Image<Channel>& from, const Image<Channel>& to,
+                                              double amount) {
     if (Status size = sameSize(from, to); !size) {
         return size.error();
     }
     if (!(amount >= 0.0 && amount <= 1.0)) {
         return Error{"blend amount must be within [0, 1]"};
     }
-    const auto& decode = decodeTable();
-    RgbaImage out(from.width, from.height);
+    using Code = Coding<Channel>;
+    Image<Channel> out(from.width, from.height);
     const float t = static_cast<float>(amount);
     for (std::size_t i = 0; i < out.pixels.size(); i += 4) {
         for (std::size_t c = 0; c < 3; ++c) {
-            const float mixed =
-                (1.0f - t) * decode[from.pixels[i + c]] + t * decode[to.pixels[i + c]];
-            out.pixels[i + c] = encode(mixed);
+            out.pixels[i + c] = Code::encode((1.0f - t) * Code::linear(from.pixels[i + c]) +
+                                             t * Code::linear(to.pixels[i + c]));
         }
-        out.pixels[i + 3] = static_cast<std::uint8_t>(
-            std::lround((1.0f - t) * from.pixels[i + 3] + t * to.pixels[i + 3]));
+        out.pixels[i + 3] = Code::alpha((1.0f - t) * from.pixels[i + 3] + t * to.pixels[i + 3]);
     }
     return out;
 }
 
-Result<RgbaImage> ImageComparison::sideBySide(const RgbaImage& left, const RgbaImage& right,
-                                              int gap) {
+template <typename Channel>
+Result<Image<Channel>> ImageComparison::sideBySide(const Image<Channel>& left,
+                                                   const Image<Channel>& right, int gap) {
     if (left.height != right.height) {
         return Error{"side-by-side images need equal heights (" + std::to_string(left.height) +
                      " and " + std::to_string(right.height) + ")"};
     }
     gap = std::max(gap, 0);
-    RgbaImage out(left.width + gap + right.width, left.height, 16, 16, 16);
-    for (int y = 0; y < out.height; ++y) {
-        std::copy_n(left.at(0, y), static_cast<std::size_t>(left.width) * 4, out.at(0, y));
-        std::copy_n(right.at(0, y), static_cast<std::size_t>(right.width) * 4,
-                    out.at(left.width + gap, y));
-    }
+    const Channel gutter = Coding<Channel>::grey(16);
+    Image<Channel> out(left.width + gap + right.width, left.height, gutter, gutter, gutter);
+    copyPixels(left, 0, 0, left.width, left.height, out, 0, 0);
+    copyPixels(right, 0, 0, right.width, right.height, out, left.width + gap, 0);
     return out;
 }
 
-Result<RgbaImage> ImageComparison::swipe(const RgbaImage& left, const RgbaImage& right,
-                                         double split) {
+template <typename Channel>
+Result<Image<Channel>> ImageComparison::swipe(const Image<Channel>& left,
+                                              const Image<Channel>& right, double split) {
     if (Status size = sameSize(left, right); !size) {
         return size.error();
     }
     if (!(split >= 0.0 && split <= 1.0)) {
         return Error{"swipe split must be within [0, 1]"};
     }
-    RgbaImage out = right;
+    Image<Channel> out = right;
     const int divider = static_cast<int>(std::lround(split * left.width));
-    for (int y = 0; y < out.height; ++y) {
-        std::copy_n(left.at(0, y), static_cast<std::size_t>(divider) * 4, out.at(0, y));
-    }
+    copyPixels(left, 0, 0, divider, left.height, out, 0, 0);
     // A light line with dark edges stays visible on bright and dark content.
     const int half = std::max(1, left.width / 640);
-    for (int y = 0; y < out.height; ++y) {
-        for (int x = divider - half - 1; x <= divider + half; ++x) {
-            if (x < 0 || x >= out.width) {
-                continue;
-            }
-            const bool edge = x == divider - half - 1 || x == divider + half;
-            std::uint8_t* p = out.at(x, y);
-            p[0] = p[1] = p[2] = edge ? 32 : 240;
-            p[3] = 255;
-        }
-    }
+    fillPixels(out, divider - half - 1, 0, divider - half, out.height, greyPixel<Channel>(32));
+    fillPixels(out, divider - half, 0, divider + half, out.height, greyPixel<Channel>(240));
+    fillPixels(out, divider + half, 0, divider + half + 1, out.height, greyPixel<Channel>(32));
     return out;
 }
+
+// The two image types ImageComparison serves (the header's promise).
+template Result<RgbaImage> ImageComparison::blend(const RgbaImage&, const RgbaImage&, double);
+template Result<LinearImage> ImageComparison::blend(const LinearImage&, const LinearImage&, double);
+template Result<RgbaImage> ImageComparison::sideBySide(const RgbaImage&, const RgbaImage&, int);
+template Result<LinearImage> ImageComparison::sideBySide(const LinearImage&, const LinearImage&,
+                                                         int);
+template Result<RgbaImage> ImageComparison::swipe(const RgbaImage&, const RgbaImage&, double);
+template Result<LinearImage> ImageComparison::swipe(const LinearImage&, const LinearImage&, double);
 
 void ImageComparison::heatColor(double t, std::uint8_t rgb[3]) {
     // Piecewise-linear ramp through perceptually ordered stops (dark to bright).
@@ -186,101 +225,7 @@ Result<RgbaImage> ImageComparison::difference(const RgbaImage& first, const Rgba
             heatColor(deltaE / maximumDeltaE, out.at(x, y));
         }
     }
-    // Legend: the ramp along the bottom with its scale.
-    const int scale = labelScale(out);
-    const int barHeight = 6 * scale;
-    const int margin = 4 * scale;
-    const int textHeight = BitmapFont::textHeight(scale);
-    const int top = out.height - margin - barHeight - textHeight;
-    const int left = margin;
-    const int right = std::max(left + 1, out.width / 3);
-    if (top > 0 && right > left + 8) {
-        const std::uint8_t panel[3] = {12, 12, 12};
-        for (int y = top - margin; y < out.height; ++y) {
-            for (int x = 0; x < right + margin * 6; ++x) {
-                if (x < out.width && y >= 0) {
-                    std::uint8_t* p = out.at(x, y);
-                    std::copy_n(panel, 3, p);
-                }
-            }
-        }
-        for (int x = left; x < right; ++x) {
-            std::uint8_t rgb[3];
-            heatColor(static_cast<double>(x - left) / (right - 1 - left), rgb);
-            for (int y = top; y < top + barHeight; ++y) {
-                std::copy_n(rgb, 3, out.at(x, y));
-            }
-        }
-        const std::uint8_t white[3] = {235, 235, 235};
-        char text[32];
-        BitmapFont::draw(out, left, top + barHeight + scale, "0", scale, white);
-        std::snprintf(text, sizeof text, "%g", maximumDeltaE / 2);
-        BitmapFont::draw(out, (left + right) / 2 - BitmapFont::textWidth(text, scale) / 2,
-                         top + barHeight + scale, text, scale, white);
-        std::snprintf(text, sizeof text, "%g dE00", maximumDeltaE);
-        BitmapFont::draw(
-            out,
-            right - BitmapFont::textWidth(std::to_string(static_cast<int>(maximumDeltaE)), scale),
-            top + barHeight + scale, text, scale, white);
-    }
-    return out;
-}
-
-Result<LinearImage> ImageComparison::blend(const LinearImage& from, const LinearImage& to,
-                                           double amount) {
-    if (Status size = sameSize(from, to); !size) {
-        return size.error();
-    }
-    if (!(amount >= 0.0 && amount <= 1.0)) {
-        return Error{"blend amount must be within [0, 1]"};
-    }
-    LinearImage out(from.width, from.height);
-    const float t = static_cast<float>(amount);
-    for (std::size_t i = 0; i < out.pixels.size(); ++i) {
-        out.pixels[i] = (1.0f - t) * from.pixels[i] + t * to.pixels[i];
-    }
-    return out;
-}
-
-Result<LinearImage> ImageComparison::sideBySide(const LinearImage& left, const LinearImage& right,
-                                                int gap) {
-    if (left.height != right.height) {
-        return Error{"side-by-side images need equal heights (" + std::to_string(left.height) +
-                     " and " + std::to_string(right.height) + ")"};
-    }
-    gap = std::max(gap, 0);
-    const float gutter = ToneMapping::radiance(16);
-    LinearImage out(left.width + gap + right.width, left.height, gutter, gutter, gutter);
-    for (int y = 0; y < out.height; ++y) {
-        std::copy_n(left.at(0, y), static_cast<std::size_t>(left.width) * 4, out.at(0, y));
-        std::copy_n(right.at(0, y), static_cast<std::size_t>(right.width) * 4,
-                    out.at(left.width + gap, y));
-    }
-    return out;
-}
-
-Result<LinearImage> ImageComparison::swipe(const LinearImage& left, const LinearImage& right,
-                                           double split) {
-    if (Status size = sameSize(left, right); !size) {
-        return size.error();
-    }
-    if (!(split >= 0.0 && split <= 1.0)) {
-        return Error{"swipe split must be within [0, 1]"};
-    }
-    LinearImage out = right;
-    const int divider = static_cast<int>(std::lround(split * left.width));
-    for (int y = 0; y < out.height; ++y) {
-        std::copy_n(left.at(0, y), static_cast<std::size_t>(divider) * 4, out.at(0, y));
-    }
-    // The same divider as the 8-bit swipe.
-    const int half = std::max(1, left.width / 640);
-    for (int y = 0; y < out.height; ++y) {
-        for (int x = divider - half - 1; x <= divider + half; ++x) {
-            if (x >= 0 && x < out.width) {
-                setGrey(out.at(x, y), x == divider - half - 1 || x == divider + half ? 32 : 240);
-            }
-        }
-    }
+    drawLegend(out, maximumDeltaE);
     return out;
 }
 

@@ -56,6 +56,32 @@ Status writeAtomically(const std::filesystem::path& path, OIIO::ImageSpec spec,
     return Status::success();
 }
 
+// Reads any image as RGBA of `Channel` (OIIO converts to `pixelType`, i.e. scales to the
+// channel's range): missing alpha is opaque, grey is copied into G and B.
+template <typename Channel>
+Result<Image<Channel>> readImage(const std::filesystem::path& path, OIIO::TypeDesc pixelType) {
+    // Keep alpha straight on reading too (OIIO premultiplies by default).
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path.string(), &config);
+    if (!input) {
+        return Error{path.string() + ": cannot read image: " + OIIO::geterror()};
+    }
+    const OIIO::ImageSpec& spec = input->spec();
+    Image<Channel> image(spec.width, spec.height, 0, 0, 0, Image<Channel>::kOpaque);
+    const int channels = std::min(spec.nchannels, 4);
+    if (!input->read_image(0, 0, 0, channels, pixelType, image.pixels.data(),
+                           4 * sizeof(Channel))) {
+        return Error{path.string() + ": cannot read image: " + input->geterror()};
+    }
+    if (channels < 3) {  // grey: copy into G and B
+        for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
+            image.pixels[i + 1] = image.pixels[i + 2] = image.pixels[i];
+        }
+    }
+    return image;
+}
+
 }  // namespace
 
 Status ImageWriter::writeRgba8(const std::filesystem::path& path, int width, int height,
@@ -94,49 +120,17 @@ bool ImageWriter::isExr(const std::filesystem::path& path) {
 
 Result<std::vector<std::uint8_t>> ImageWriter::readRgba8(const std::filesystem::path& path,
                                                          int& width, int& height) {
-    // Keep alpha straight on reading too (OIIO premultiplies by default).
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path.string(), &config);
-    if (!input) {
-        return Error{path.string() + ": cannot read image: " + OIIO::geterror()};
+    Result<RgbaImage> image = readImage<std::uint8_t>(path, OIIO::TypeDesc::UINT8);
+    if (!image) {
+        return image.error();
     }
-    const OIIO::ImageSpec& spec = input->spec();
-    width = spec.width;
-    height = spec.height;
-    std::vector<std::uint8_t> pixels(std::size_t(width) * height * 4, 255);
-    const int channels = std::min(spec.nchannels, 4);
-    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data(), 4)) {
-        return Error{path.string() + ": cannot read image: " + input->geterror()};
-    }
-    if (channels < 3) {  // grey: copy into G and B
-        for (std::size_t i = 0; i < std::size_t(width) * height; ++i) {
-            pixels[i * 4 + 1] = pixels[i * 4 + 2] = pixels[i * 4];
-        }
-    }
-    return pixels;
+    width = image.value().width;
+    height = image.value().height;
+    return std::move(image.value().pixels);
 }
 
 Result<LinearImage> ImageWriter::readLinear(const std::filesystem::path& path) {
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path.string(), &config);
-    if (!input) {
-        return Error{path.string() + ": cannot read image: " + OIIO::geterror()};
-    }
-    const OIIO::ImageSpec& spec = input->spec();
-    LinearImage image(spec.width, spec.height);
-    const int channels = std::min(spec.nchannels, 4);
-    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, image.pixels.data(),
-                           4 * sizeof(float))) {
-        return Error{path.string() + ": cannot read image: " + input->geterror()};
-    }
-    if (channels < 3) {
-        for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
-            image.pixels[i + 1] = image.pixels[i + 2] = image.pixels[i];
-        }
-    }
-    return image;
+    return readImage<float>(path, OIIO::TypeDesc::FLOAT);
 }
 
 Result<ImageMetadata> ImageWriter::readMetadata(const std::filesystem::path& path,

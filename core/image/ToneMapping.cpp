@@ -31,4 +31,12 @@ float ToneMapping::radiance(std::uint8_t srgb) {
     return -std::log1p(-mapped);
 }
 
+LinearImage ToneMapping::radiance(const RgbaImage& image) {
+    LinearImage out(image.width, image.height);
+    for (std::size_t i = 0; i < out.pixels.size(); ++i) {
+        out.pixels[i] = i % 4 == 3 ? image.pixels[i] / 255.0f : radiance(image.pixels[i]);
+    }
+    return out;
+}
+
 }  // namespace sylva

@@ -47,12 +47,7 @@ Result<LinearImage> readRadiance(const std::filesystem::path& path) {
     if (!image) {
         return image.error();
     }
-    LinearImage out(image.value().width, image.value().height);
-    for (std::size_t i = 0; i < out.pixels.size(); ++i) {
-        out.pixels[i] = i % 4 == 3 ? image.value().pixels[i] / 255.0f
-                                   : ToneMapping::radiance(image.value().pixels[i]);
-    }
-    return out;
+    return ToneMapping::radiance(image.value());
 }
 
 // The comparison image of `job` from its two inputs (RgbaImage or LinearImage).

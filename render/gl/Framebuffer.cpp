@@ -40,23 +40,21 @@ const char* statusName(GLenum status) {
 }
 
 // Creates an immutable single-level texture; fails when the driver rejects the format.
-Result<GLuint> createTexture(GLenum format, int width, int height) {
+Result<GlTexture> createTexture(GLenum format, int width, int height) {
     while (glGetError() != GL_NO_ERROR) {
         // Drop stale errors so the check below only sees ours.
     }
-    GLuint texture = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-    glTextureStorage2D(texture, 1, format, width, height);
+    GlTexture texture = createGlTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(texture.get(), 1, format, width, height);
     if (GLenum error = glGetError(); error != GL_NO_ERROR) {
-        glDeleteTextures(1, &texture);
         return Error{"Framebuffer: texture storage with internal format " + hex(format) +
                      " failed (GL error " + hex(error) + ")"};
     }
     // Nearest and clamped: attachments are read texel-exact by later passes.
-    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(texture.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(texture.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     return texture;
 }
 
@@ -80,36 +78,37 @@ Result<Framebuffer> Framebuffer::create(int width, int height,
     Framebuffer framebuffer;  // releases everything created so far on early return
     framebuffer.width_ = width;
     framebuffer.height_ = height;
-    glCreateFramebuffers(1, &framebuffer.framebuffer_);
+    framebuffer.framebuffer_ = createGlFramebuffer();
+    const GLuint id = framebuffer.framebuffer_.get();
 
     std::vector<GLenum> drawBuffers;
     for (std::size_t i = 0; i < colorFormats.size(); ++i) {
-        Result<GLuint> texture = createTexture(colorFormats[i], width, height);
+        Result<GlTexture> texture = createTexture(colorFormats[i], width, height);
         if (!texture) {
             return texture.error();
         }
-        framebuffer.colorTextures_.push_back(*texture);
-        framebuffer.colorFormats_.push_back(colorFormats[i]);
         const GLenum attachment = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
-        glNamedFramebufferTexture(framebuffer.framebuffer_, attachment, *texture, 0);
+        glNamedFramebufferTexture(id, attachment, texture->get(), 0);
+        framebuffer.colorTextures_.push_back(std::move(texture.value()));
+        framebuffer.colorFormats_.push_back(colorFormats[i]);
         drawBuffers.push_back(attachment);
     }
     if (withDepth) {
-        Result<GLuint> texture = createTexture(GL_DEPTH_COMPONENT32F, width, height);
+        Result<GlTexture> texture = createTexture(GL_DEPTH_COMPONENT32F, width, height);
         if (!texture) {
             return texture.error();
         }
-        framebuffer.depthTexture_ = *texture;
-        glNamedFramebufferTexture(framebuffer.framebuffer_, GL_DEPTH_ATTACHMENT, *texture, 0);
+        glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, texture->get(), 0);
+        framebuffer.depthTexture_ = std::move(texture.value());
     }
     if (drawBuffers.empty()) {
-        glNamedFramebufferDrawBuffer(framebuffer.framebuffer_, GL_NONE);
-        glNamedFramebufferReadBuffer(framebuffer.framebuffer_, GL_NONE);
+        glNamedFramebufferDrawBuffer(id, GL_NONE);
+        glNamedFramebufferReadBuffer(id, GL_NONE);
     } else {
-        glNamedFramebufferDrawBuffers(framebuffer.framebuffer_,
-                                      static_cast<GLsizei>(drawBuffers.size()), drawBuffers.data());
+        glNamedFramebufferDrawBuffers(id, static_cast<GLsizei>(drawBuffers.size()),
+                                      drawBuffers.data());
     }
-    const GLenum status = glCheckNamedFramebufferStatus(framebuffer.framebuffer_, GL_FRAMEBUFFER);
+    const GLenum status = glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
         return Error{std::string("Framebuffer: incomplete (") + statusName(status) + ", " +
                      hex(status) + ")"};
@@ -117,55 +116,26 @@ Result<Framebuffer> Framebuffer::create(int width, int height,
     return framebuffer;
 }
 
-Framebuffer::~Framebuffer() {
-    release();
-}
-
-Framebuffer::Framebuffer(Framebuffer&& other) noexcept
-    : framebuffer_(std::exchange(other.framebuffer_, 0)),
-      colorTextures_(std::move(other.colorTextures_)),
-      colorFormats_(std::move(other.colorFormats_)),
-      depthTexture_(std::exchange(other.depthTexture_, 0)),
-      width_(std::exchange(other.width_, 0)),
-      height_(std::exchange(other.height_, 0)) {
-    other.colorTextures_.clear();
-    other.colorFormats_.clear();
+Framebuffer::Framebuffer(Framebuffer&& other) noexcept {
+    *this = std::move(other);
 }
 
 Framebuffer& Framebuffer::operator=(Framebuffer&& other) noexcept {
     if (this != &other) {
-        release();
-        framebuffer_ = std::exchange(other.framebuffer_, 0);
-        colorTextures_ = std::move(other.colorTextures_);
-        colorFormats_ = std::move(other.colorFormats_);
-        depthTexture_ = std::exchange(other.depthTexture_, 0);
+        // The handles delete what this framebuffer owned; the source is left empty.
+        framebuffer_ = std::move(other.framebuffer_);
+        colorTextures_ = std::exchange(other.colorTextures_, {});
+        colorFormats_ = std::exchange(other.colorFormats_, {});
+        depthTexture_ = std::move(other.depthTexture_);
         width_ = std::exchange(other.width_, 0);
         height_ = std::exchange(other.height_, 0);
-        other.colorTextures_.clear();
-        other.colorFormats_.clear();
     }
     return *this;
 }
 
-void Framebuffer::release() {
-    if (!colorTextures_.empty()) {
-        glDeleteTextures(static_cast<GLsizei>(colorTextures_.size()), colorTextures_.data());
-        colorTextures_.clear();
-    }
-    colorFormats_.clear();
-    if (depthTexture_ != 0) {
-        glDeleteTextures(1, &depthTexture_);
-        depthTexture_ = 0;
-    }
-    if (framebuffer_ != 0) {
-        glDeleteFramebuffers(1, &framebuffer_);
-        framebuffer_ = 0;
-    }
-}
-
 void Framebuffer::bind() const {
-    SYLVA_CHECK(framebuffer_ != 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+    SYLVA_CHECK(framebuffer_);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
     glViewport(0, 0, width_, height_);
 }
 
@@ -176,12 +146,12 @@ void Framebuffer::unbind() {
 void Framebuffer::clearColor(int attachment, const glm::vec4& color) const {
     SYLVA_CHECK(attachment >= 0 && attachment < colorCount());
     const float values[4] = {color.r, color.g, color.b, color.a};
-    glClearNamedFramebufferfv(framebuffer_, GL_COLOR, attachment, values);
+    glClearNamedFramebufferfv(framebuffer_.get(), GL_COLOR, attachment, values);
 }
 
 void Framebuffer::clearDepth(float depth) const {
-    SYLVA_CHECK(depthTexture_ != 0);
-    glClearNamedFramebufferfv(framebuffer_, GL_DEPTH, 0, &depth);
+    SYLVA_CHECK(depthTexture_);
+    glClearNamedFramebufferfv(framebuffer_.get(), GL_DEPTH, 0, &depth);
 }
 
 std::uint32_t Framebuffer::colorFormat(int index) const {
@@ -191,22 +161,22 @@ std::uint32_t Framebuffer::colorFormat(int index) const {
 
 std::uint32_t Framebuffer::colorTexture(int index) const {
     SYLVA_CHECK(index >= 0 && index < colorCount());
-    return colorTextures_[static_cast<std::size_t>(index)];
+    return colorTextures_[static_cast<std::size_t>(index)].get();
 }
 
 void Framebuffer::readInto(int attachment, std::uint32_t format, std::uint32_t type,
                            int bytesPerPixel, void* out) const {
-    SYLVA_CHECK(framebuffer_ != 0);
+    SYLVA_CHECK(framebuffer_);
     GLint previousRead = 0;
     GLint previousAlignment = 0;
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previousRead);
     glGetIntegerv(GL_PACK_ALIGNMENT, &previousAlignment);
 
     if (attachment >= 0) {
-        glNamedFramebufferReadBuffer(framebuffer_,
+        glNamedFramebufferReadBuffer(framebuffer_.get(),
                                      GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(attachment));
     }
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.get());
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, width_, height_, format, type, out);
     glPixelStorei(GL_PACK_ALIGNMENT, previousAlignment);
@@ -243,7 +213,7 @@ std::vector<float> Framebuffer::readPixelsFloat(int attachment, int channels) co
 }
 
 std::vector<float> Framebuffer::readDepth() const {
-    SYLVA_CHECK(depthTexture_ != 0);
+    SYLVA_CHECK(depthTexture_);
     std::vector<float> depth(static_cast<std::size_t>(width_) * height_);
     readInto(-1, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<int>(sizeof(float)), depth.data());
     return depth;

@@ -47,16 +47,6 @@ std::string programLog(GLuint program) {
     return log;
 }
 
-// Deletes the shader objects of a program under construction on every exit path.
-struct ShaderObjects {
-    std::vector<GLuint> ids;
-    ~ShaderObjects() {
-        for (GLuint id : ids) {
-            glDeleteShader(id);
-        }
-    }
-};
-
 }  // namespace
 
 Result<ShaderProgram> ShaderProgram::create(const ShaderLibrary& library,
@@ -80,14 +70,13 @@ Result<ShaderProgram> ShaderProgram::create(const ShaderLibrary& library,
         names += (i == 0 ? "" : ", ") + library.displayName(stages[i].path);
     }
 
-    ShaderObjects shaders;
+    std::vector<GlShader> shaders;  // deleted on every exit path
     for (const ShaderStage& stage : stages) {
         Result<PreprocessedShader> source = library.preprocessWithMap(stage.path, defines);
         if (!source) {
             return source.error();
         }
-        const GLuint shader = glCreateShader(stage.type);
-        shaders.ids.push_back(shader);
+        const GLuint shader = shaders.emplace_back(createGlShader(stage.type)).get();
         const char* text = source->source.c_str();
         const auto length = static_cast<GLint>(source->source.size());
         glShaderSource(shader, 1, &text, &length);
@@ -101,97 +90,87 @@ Result<ShaderProgram> ShaderProgram::create(const ShaderLibrary& library,
         }
     }
 
-    ShaderProgram program(glCreateProgram());
-    for (GLuint shader : shaders.ids) {
-        glAttachShader(program.program_, shader);
+    ShaderProgram program(createGlProgram());
+    const GLuint id = program.id();
+    for (const GlShader& shader : shaders) {
+        glAttachShader(id, shader.get());
     }
-    glLinkProgram(program.program_);
-    for (GLuint shader : shaders.ids) {
-        glDetachShader(program.program_, shader);
+    glLinkProgram(id);
+    for (const GlShader& shader : shaders) {
+        glDetachShader(id, shader.get());
     }
     GLint linked = GL_FALSE;
-    glGetProgramiv(program.program_, GL_LINK_STATUS, &linked);
+    glGetProgramiv(id, GL_LINK_STATUS, &linked);
     if (linked != GL_TRUE) {
-        return Error{"linking shader program (" + names + ") failed:\n" +
-                     programLog(program.program_)};
+        return Error{"linking shader program (" + names + ") failed:\n" + programLog(id)};
     }
     return program;
 }
 
-ShaderProgram::~ShaderProgram() {
-    if (program_ != 0) {
-        glDeleteProgram(program_);
-    }
-}
-
 ShaderProgram::ShaderProgram(ShaderProgram&& other) noexcept
-    : program_(std::exchange(other.program_, 0)), locations_(std::move(other.locations_)) {
-    other.locations_.clear();
-}
+    : program_(std::move(other.program_)), locations_(std::exchange(other.locations_, {})) {}
 
 ShaderProgram& ShaderProgram::operator=(ShaderProgram&& other) noexcept {
     if (this != &other) {
-        if (program_ != 0) {
-            glDeleteProgram(program_);
-        }
-        program_ = std::exchange(other.program_, 0);
-        locations_ = std::move(other.locations_);
-        other.locations_.clear();
+        program_ = std::move(other.program_);  // deletes the program this one owned
+        locations_ = std::exchange(other.locations_, {});
     }
     return *this;
 }
 
 void ShaderProgram::use() const {
-    SYLVA_CHECK(program_ != 0);
-    glUseProgram(program_);
+    SYLVA_CHECK(program_);
+    glUseProgram(program_.get());
 }
 
 int ShaderProgram::uniformLocation(std::string_view name) {
-    SYLVA_CHECK(program_ != 0);
+    SYLVA_CHECK(program_);
     if (auto found = locations_.find(name); found != locations_.end()) {
         return found->second;
     }
     const std::string key(name);
-    const GLint location = glGetUniformLocation(program_, key.c_str());
+    const GLint location = glGetUniformLocation(program_.get(), key.c_str());
     locations_.emplace(key, location);
     return location;
 }
 
 // A location of -1 is ignored by glProgramUniform*, as documented in the header.
 void ShaderProgram::setInt(std::string_view name, int value) {
-    glProgramUniform1i(program_, uniformLocation(name), value);
+    glProgramUniform1i(program_.get(), uniformLocation(name), value);
 }
 
 void ShaderProgram::setUint(std::string_view name, std::uint32_t value) {
-    glProgramUniform1ui(program_, uniformLocation(name), value);
+    glProgramUniform1ui(program_.get(), uniformLocation(name), value);
 }
 
 void ShaderProgram::setFloat(std::string_view name, float value) {
-    glProgramUniform1f(program_, uniformLocation(name), value);
+    glProgramUniform1f(program_.get(), uniformLocation(name), value);
 }
 
 void ShaderProgram::setVec2(std::string_view name, const glm::vec2& value) {
-    glProgramUniform2fv(program_, uniformLocation(name), 1, glm::value_ptr(value));
+    glProgramUniform2fv(program_.get(), uniformLocation(name), 1, glm::value_ptr(value));
 }
 
 void ShaderProgram::setVec3(std::string_view name, const glm::vec3& value) {
-    glProgramUniform3fv(program_, uniformLocation(name), 1, glm::value_ptr(value));
+    glProgramUniform3fv(program_.get(), uniformLocation(name), 1, glm::value_ptr(value));
 }
 
 void ShaderProgram::setVec4(std::string_view name, const glm::vec4& value) {
-    glProgramUniform4fv(program_, uniformLocation(name), 1, glm::value_ptr(value));
+    glProgramUniform4fv(program_.get(), uniformLocation(name), 1, glm::value_ptr(value));
 }
 
 void ShaderProgram::setIVec2(std::string_view name, const glm::ivec2& value) {
-    glProgramUniform2iv(program_, uniformLocation(name), 1, glm::value_ptr(value));
+    glProgramUniform2iv(program_.get(), uniformLocation(name), 1, glm::value_ptr(value));
 }
 
 void ShaderProgram::setMat3(std::string_view name, const glm::mat3& value) {
-    glProgramUniformMatrix3fv(program_, uniformLocation(name), 1, GL_FALSE, glm::value_ptr(value));
+    glProgramUniformMatrix3fv(program_.get(), uniformLocation(name), 1, GL_FALSE,
+                              glm::value_ptr(value));
 }
 
 void ShaderProgram::setMat4(std::string_view name, const glm::mat4& value) {
-    glProgramUniformMatrix4fv(program_, uniformLocation(name), 1, GL_FALSE, glm::value_ptr(value));
+    glProgramUniformMatrix4fv(program_.get(), uniformLocation(name), 1, GL_FALSE,
+                              glm::value_ptr(value));
 }
 
 }  // namespace sylva::render

@@ -13,14 +13,8 @@ Result<std::unique_ptr<ShadingPass>> ShadingPass::create(const ShaderLibrary& li
         return program.error();
     }
     pass->program_ = std::move(program.value());
-    glCreateVertexArrays(1, &pass->emptyVertexArray_);
+    pass->emptyVertexArray_ = createGlVertexArray();
     return pass;
-}
-
-ShadingPass::~ShadingPass() {
-    if (emptyVertexArray_ != 0) {
-        glDeleteVertexArrays(1, &emptyVertexArray_);
-    }
 }
 
 void ShadingPass::run(const Framebuffer& gbuffer, const Framebuffer& target, const Camera& camera,
@@ -44,7 +38,7 @@ void ShadingPass::run(const Framebuffer& gbuffer, const Framebuffer& target, con
     glBindTextureUnit(0, gbuffer.colorTexture(0));
     glBindTextureUnit(1, gbuffer.colorTexture(1));
     glBindTextureUnit(2, gbuffer.depthTexture());
-    glBindVertexArray(emptyVertexArray_);
+    glBindVertexArray(emptyVertexArray_.get());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
 }

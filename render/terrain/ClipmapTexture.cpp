@@ -25,48 +25,18 @@ Result<ClipmapTexture> ClipmapTexture::create(int size, int levels, ClipmapForma
     const GLenum internal = format == ClipmapFormat::Height  ? GL_R32F
                             : format == ClipmapFormat::Color ? GL_SRGB8_ALPHA8
                                                              : GL_RGB16F;
-    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture.texture_);
-    glTextureStorage3D(texture.texture_, 1, internal, size, size, levels);
-    glTextureParameteri(texture.texture_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(texture.texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(texture.texture_, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTextureParameteri(texture.texture_, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    texture.texture_ = createGlTexture(GL_TEXTURE_2D_ARRAY);
+    const GLuint id = texture.texture_.get();
+    glTextureStorage3D(id, 1, internal, size, size, levels);
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_REPEAT);
     if (glGetError() != GL_NO_ERROR) {
         return Error{"clipmap texture: cannot allocate " + std::to_string(size) + "x" +
                      std::to_string(size) + "x" + std::to_string(levels)};
     }
     return texture;
-}
-
-ClipmapTexture::~ClipmapTexture() {
-    if (texture_ != 0) {
-        glDeleteTextures(1, &texture_);
-    }
-    if (pixelBuffer_ != 0) {
-        glDeleteBuffers(1, &pixelBuffer_);
-    }
-}
-
-ClipmapTexture::ClipmapTexture(ClipmapTexture&& other) noexcept {
-    *this = std::move(other);
-}
-
-ClipmapTexture& ClipmapTexture::operator=(ClipmapTexture&& other) noexcept {
-    if (this != &other) {
-        if (texture_ != 0) {
-            glDeleteTextures(1, &texture_);
-        }
-        if (pixelBuffer_ != 0) {
-            glDeleteBuffers(1, &pixelBuffer_);
-        }
-        texture_ = std::exchange(other.texture_, 0);
-        pixelBuffer_ = std::exchange(other.pixelBuffer_, 0);
-        size_ = other.size_;
-        levels_ = other.levels_;
-        format_ = other.format_;
-        uploadedBytes_ = other.uploadedBytes_;
-    }
-    return *this;
 }
 
 void ClipmapTexture::upload(const Clipmap& clipmap, const std::vector<Clipmap::Region>& regions) {
@@ -83,13 +53,13 @@ void ClipmapTexture::upload(const Clipmap& clipmap, const std::vector<Clipmap::R
     for (const Clipmap::Region& region : regions) {
         total += std::size_t(region.width) * region.height * texelBytes;
     }
-    if (pixelBuffer_ == 0) {
-        glCreateBuffers(1, &pixelBuffer_);
+    if (!pixelBuffer_) {
+        pixelBuffer_ = createGlBuffer();
     }
     // Orphan the previous storage so a transfer still in flight is never waited for.
-    glNamedBufferData(pixelBuffer_, GLsizeiptr(total), nullptr, GL_STREAM_DRAW);
+    glNamedBufferData(pixelBuffer_.get(), GLsizeiptr(total), nullptr, GL_STREAM_DRAW);
     auto* mapped = static_cast<std::uint8_t*>(glMapNamedBufferRange(
-        pixelBuffer_, 0, GLsizeiptr(total), GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT));
+        pixelBuffer_.get(), 0, GLsizeiptr(total), GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT));
     SYLVA_CHECK_MESSAGE(mapped != nullptr, "ClipmapTexture: cannot map the pixel buffer");
     std::size_t offset = 0;
     std::vector<std::size_t> offsets;
@@ -116,9 +86,9 @@ void ClipmapTexture::upload(const Clipmap& clipmap, const std::vector<Clipmap::R
         }
         offset += std::size_t(region.width) * region.height * texelBytes;
     }
-    glUnmapNamedBuffer(pixelBuffer_);
+    glUnmapNamedBuffer(pixelBuffer_.get());
 
-    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, pixelBuffer_);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, pixelBuffer_.get());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
     const GLenum layout = bytes           ? GL_RGBA
@@ -129,7 +99,7 @@ void ClipmapTexture::upload(const Clipmap& clipmap, const std::vector<Clipmap::R
     const GLenum type = bytes ? GL_UNSIGNED_BYTE : GL_FLOAT;
     for (std::size_t i = 0; i < regions.size(); ++i) {
         const Clipmap::Region& region = regions[i];
-        glTextureSubImage3D(texture_, 0, region.x, region.y, region.level, region.width,
+        glTextureSubImage3D(texture_.get(), 0, region.x, region.y, region.level, region.width,
                             region.height, 1, layout, type,
                             reinterpret_cast<const void*>(offsets[i]));
     }
@@ -139,7 +109,7 @@ void ClipmapTexture::upload(const Clipmap& clipmap, const std::vector<Clipmap::R
 }
 
 void ClipmapTexture::bind(int unit) const {
-    glBindTextureUnit(static_cast<GLuint>(unit), texture_);
+    glBindTextureUnit(static_cast<GLuint>(unit), texture_.get());
 }
 
 }  // namespace sylva::render

@@ -67,42 +67,30 @@ Result<std::unique_ptr<TerrainRenderer>> TerrainRenderer::create(const ShaderLib
     return renderer;
 }
 
-TerrainRenderer::~TerrainRenderer() {
-    release(ring_);
-    release(fill_);
-}
+TerrainRenderer::~TerrainRenderer() = default;
 
 TerrainRenderer::Mesh TerrainRenderer::upload(const TerrainMesh& mesh) {
     Mesh result;
-    glCreateVertexArrays(1, &result.vertexArray);
-    glCreateBuffers(1, &result.vertexBuffer);
-    glCreateBuffers(1, &result.indexBuffer);
-    glNamedBufferStorage(result.vertexBuffer,
+    result.vertexArray = createGlVertexArray();
+    result.vertexBuffer = createGlBuffer();
+    result.indexBuffer = createGlBuffer();
+    const GLuint vertexArray = result.vertexArray.get();
+    glNamedBufferStorage(result.vertexBuffer.get(),
                          GLsizeiptr(mesh.vertices.size() * sizeof(TerrainVertex)),
                          mesh.vertices.data(), 0);
-    glNamedBufferStorage(result.indexBuffer,
+    glNamedBufferStorage(result.indexBuffer.get(),
                          GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
                          mesh.indices.data(), 0);
-    glVertexArrayVertexBuffer(result.vertexArray, 0, result.vertexBuffer, 0, sizeof(TerrainVertex));
-    glVertexArrayElementBuffer(result.vertexArray, result.indexBuffer);
-    glEnableVertexArrayAttrib(result.vertexArray, 0);
-    glVertexArrayAttribFormat(result.vertexArray, 0, 4, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(result.vertexArray, 0, 0);
-    glEnableVertexArrayAttrib(result.vertexArray, 1);
-    glVertexArrayAttribFormat(result.vertexArray, 1, 1, GL_FLOAT, GL_FALSE,
-                              offsetof(TerrainVertex, seam));
-    glVertexArrayAttribBinding(result.vertexArray, 1, 0);
+    glVertexArrayVertexBuffer(vertexArray, 0, result.vertexBuffer.get(), 0, sizeof(TerrainVertex));
+    glVertexArrayElementBuffer(vertexArray, result.indexBuffer.get());
+    glEnableVertexArrayAttrib(vertexArray, 0);
+    glVertexArrayAttribFormat(vertexArray, 0, 4, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vertexArray, 0, 0);
+    glEnableVertexArrayAttrib(vertexArray, 1);
+    glVertexArrayAttribFormat(vertexArray, 1, 1, GL_FLOAT, GL_FALSE, offsetof(TerrainVertex, seam));
+    glVertexArrayAttribBinding(vertexArray, 1, 0);
     result.indexCount = static_cast<std::int32_t>(mesh.indices.size());
     return result;
-}
-
-void TerrainRenderer::release(Mesh& mesh) {
-    if (mesh.vertexArray != 0) {
-        glDeleteVertexArrays(1, &mesh.vertexArray);
-        glDeleteBuffers(1, &mesh.vertexBuffer);
-        glDeleteBuffers(1, &mesh.indexBuffer);
-        mesh = Mesh{};
-    }
 }
 
 LevelRange TerrainRenderer::visibleLevels(const Camera& camera, double heightAboveTerrain,
@@ -317,14 +305,14 @@ void TerrainRenderer::draw(const Camera& camera, const glm::dmat4& projection,
     for (int level = levels.coarsest; level <= levels.finest; ++level) {
         program_.setInt("uLevel", level);
         program_.setFloat("uLevelScale", float(std::ldexp(1.0, -level)));
-        glBindVertexArray(ring_.vertexArray);
+        glBindVertexArray(ring_.vertexArray.get());
         glDrawElements(GL_TRIANGLES, ring_.indexCount, GL_UNSIGNED_INT, nullptr);
         statistics_.triangles += std::uint64_t(ring_.indexCount / 3);
     }
     // The fill disk closes the finest level down to the nadir; it never blends.
     program_.setInt("uLevel", levels.finest);
     program_.setFloat("uLevelScale", float(std::ldexp(1.0, -levels.finest)));
-    glBindVertexArray(fill_.vertexArray);
+    glBindVertexArray(fill_.vertexArray.get());
     glDrawElements(GL_TRIANGLES, fill_.indexCount, GL_UNSIGNED_INT, nullptr);
     statistics_.triangles += std::uint64_t(fill_.indexCount / 3);
     glBindVertexArray(0);

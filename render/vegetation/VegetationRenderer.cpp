@@ -50,22 +50,13 @@ void setInstanceAttributes(GLuint vertexArray, GLuint firstLocation, GLuint bind
 // One mesh of one material, instanced (vertex binding 0: MeshVertex, binding 1: the
 // DrawInstance buffer).
 struct VegetationMesh {
-    GLuint vertexArray = 0, vertexBuffer = 0, indexBuffer = 0, texture = 0;
-    bool ownsTexture = false;  // meshes of one material share the first one's texture
+    GlVertexArray vertexArray;
+    GlBuffer vertexBuffer, indexBuffer;
+    GlTexture ownedTexture;  // meshes of one material share the first one's texture
+    GLuint texture = 0;      // what draws bind: ownedTexture, another mesh's, or 0
     GLsizei indexCount = 0;
     glm::vec4 baseColor{1.0f};
     float alphaCutoff = -1.0f;
-    VegetationMesh() = default;
-    VegetationMesh(const VegetationMesh&) = delete;
-    VegetationMesh& operator=(const VegetationMesh&) = delete;
-    ~VegetationMesh() {
-        glDeleteVertexArrays(1, &vertexArray);
-        glDeleteBuffers(1, &vertexBuffer);
-        glDeleteBuffers(1, &indexBuffer);
-        if (ownsTexture) {
-            glDeleteTextures(1, &texture);
-        }
-    }
 };
 
 struct VegetationRenderer::Species {
@@ -99,18 +90,18 @@ std::vector<std::unique_ptr<VegetationMesh>> uploadModel(const PlantModel& model
             vertices[i].normal = i < source.normals.size() ? source.normals[i] : glm::vec3(0, 0, 1);
             vertices[i].uv = i < source.uvs.size() ? source.uvs[i] : glm::vec2(0.0f);
         }
-        glCreateVertexArrays(1, &mesh->vertexArray);
-        glCreateBuffers(1, &mesh->vertexBuffer);
-        glCreateBuffers(1, &mesh->indexBuffer);
-        glNamedBufferStorage(mesh->vertexBuffer, GLsizeiptr(vertices.size() * sizeof(MeshVertex)),
-                             vertices.data(), 0);
-        glNamedBufferStorage(mesh->indexBuffer,
+        mesh->vertexArray = createGlVertexArray();
+        mesh->vertexBuffer = createGlBuffer();
+        mesh->indexBuffer = createGlBuffer();
+        glNamedBufferStorage(mesh->vertexBuffer.get(),
+                             GLsizeiptr(vertices.size() * sizeof(MeshVertex)), vertices.data(), 0);
+        glNamedBufferStorage(mesh->indexBuffer.get(),
                              GLsizeiptr(source.indices.size() * sizeof(std::uint32_t)),
                              source.indices.data(), 0);
         mesh->indexCount = GLsizei(source.indices.size());
-        const GLuint va = mesh->vertexArray;
-        glVertexArrayVertexBuffer(va, 0, mesh->vertexBuffer, 0, sizeof(MeshVertex));
-        glVertexArrayElementBuffer(va, mesh->indexBuffer);
+        const GLuint va = mesh->vertexArray.get();
+        glVertexArrayVertexBuffer(va, 0, mesh->vertexBuffer.get(), 0, sizeof(MeshVertex));
+        glVertexArrayElementBuffer(va, mesh->indexBuffer.get());
         const GLuint offsets[3] = {offsetof(MeshVertex, position), offsetof(MeshVertex, normal),
                                    offsetof(MeshVertex, uv)};
         const GLint sizes[3] = {3, 3, 2};
@@ -131,7 +122,8 @@ std::vector<std::unique_ptr<VegetationMesh>> uploadModel(const PlantModel& model
                 if (id == 0) {
                     const int levels =
                         1 + int(std::floor(std::log2(std::max(texture.width, texture.height))));
-                    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+                    mesh->ownedTexture = createGlTexture(GL_TEXTURE_2D);
+                    id = mesh->ownedTexture.get();
                     glTextureStorage2D(id, levels, GL_SRGB8_ALPHA8, texture.width, texture.height);
                     glTextureSubImage2D(id, 0, 0, 0, texture.width, texture.height, GL_RGBA,
                                         GL_UNSIGNED_BYTE, texture.rgba.data());
@@ -140,7 +132,6 @@ std::vector<std::unique_ptr<VegetationMesh>> uploadModel(const PlantModel& model
                     glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
                     glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
                     glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-                    mesh->ownsTexture = true;
                 }
                 mesh->texture = id;
             }
@@ -184,19 +175,14 @@ Result<std::unique_ptr<VegetationRenderer>> VegetationRenderer::create(
     GLfloat pointSizes[2] = {1.0f, 1.0f};
     glGetFloatv(GL_POINT_SIZE_RANGE, pointSizes);
     renderer->maximumPointSize_ = std::max(1.0f, pointSizes[1]);
-    glCreateBuffers(1, &renderer->instanceBuffer_);
-    glCreateVertexArrays(1, &renderer->primitiveArray_);
-    setInstanceAttributes(renderer->primitiveArray_, 0, 0);
+    renderer->instanceBuffer_ = createGlBuffer();
+    renderer->primitiveArray_ = createGlVertexArray();
+    setInstanceAttributes(renderer->primitiveArray_.get(), 0, 0);
     return renderer;
 }
 
-VegetationRenderer::~VegetationRenderer() {
-    species_.clear();
-    glDeleteBuffers(1, &ellipsoidBuffer_);
-    glDeleteBuffers(1, &lineBuffer_);
-    glDeleteBuffers(1, &instanceBuffer_);
-    glDeleteVertexArrays(1, &primitiveArray_);
-}
+// Out of line: Species and VegetationMesh are complete only here.
+VegetationRenderer::~VegetationRenderer() = default;
 
 const std::shared_ptr<const PlantAsset>& VegetationRenderer::asset(std::uint32_t species) const {
     SYLVA_CHECK(species < species_.size());
@@ -217,12 +203,12 @@ std::uint32_t VegetationRenderer::addSpecies(std::shared_ptr<const PlantAsset> a
     std::vector<GpuEllipsoid> ellipsoids(ellipsoidCount_ + lod.ellipsoids.size());
     std::vector<GpuLine> lines(lineCount_ + lod.lines.size());
     if (ellipsoidCount_ > 0) {
-        glGetNamedBufferSubData(ellipsoidBuffer_, 0,
+        glGetNamedBufferSubData(ellipsoidBuffer_.get(), 0,
                                 GLsizeiptr(ellipsoidCount_ * sizeof(GpuEllipsoid)),
                                 ellipsoids.data());
     }
     if (lineCount_ > 0) {
-        glGetNamedBufferSubData(lineBuffer_, 0, GLsizeiptr(lineCount_ * sizeof(GpuLine)),
+        glGetNamedBufferSubData(lineBuffer_.get(), 0, GLsizeiptr(lineCount_ * sizeof(GpuLine)),
                                 lines.data());
     }
     for (std::size_t i = 0; i < lod.ellipsoids.size(); ++i) {
@@ -244,10 +230,9 @@ std::uint32_t VegetationRenderer::addSpecies(std::shared_ptr<const PlantAsset> a
     }
     ellipsoidCount_ = std::uint32_t(ellipsoids.size());
     lineCount_ = std::uint32_t(lines.size());
-    glDeleteBuffers(1, &ellipsoidBuffer_);
-    glDeleteBuffers(1, &lineBuffer_);
-    glCreateBuffers(1, &ellipsoidBuffer_);
-    glCreateBuffers(1, &lineBuffer_);
+    // Immutable storage cannot grow: new buffers replace (and delete) the old ones.
+    ellipsoidBuffer_ = createGlBuffer();
+    lineBuffer_ = createGlBuffer();
     // Empty buffers are not bindable as storage: keep at least one element.
     if (ellipsoids.empty()) {
         ellipsoids.resize(1);
@@ -255,15 +240,17 @@ std::uint32_t VegetationRenderer::addSpecies(std::shared_ptr<const PlantAsset> a
     if (lines.empty()) {
         lines.resize(1);
     }
-    glNamedBufferStorage(ellipsoidBuffer_, GLsizeiptr(ellipsoids.size() * sizeof(GpuEllipsoid)),
-                         ellipsoids.data(), 0);
-    glNamedBufferStorage(lineBuffer_, GLsizeiptr(lines.size() * sizeof(GpuLine)), lines.data(), 0);
+    glNamedBufferStorage(ellipsoidBuffer_.get(),
+                         GLsizeiptr(ellipsoids.size() * sizeof(GpuEllipsoid)), ellipsoids.data(),
+                         0);
+    glNamedBufferStorage(lineBuffer_.get(), GLsizeiptr(lines.size() * sizeof(GpuLine)),
+                         lines.data(), 0);
 
-    species->mesh = uploadModel(asset->model, instanceBuffer_);
+    species->mesh = uploadModel(asset->model, instanceBuffer_.get());
     SpeciesLod description = LodSelector::describe(*asset, transitionBand);
     for (const BillboardLevel& level : billboardLevels(*asset)) {
-        species->billboardLevels.push_back(
-            uploadModel(BillboardCloudBuilder::levelModel(level, asset->name), instanceBuffer_));
+        species->billboardLevels.push_back(uploadModel(
+            BillboardCloudBuilder::levelModel(level, asset->name), instanceBuffer_.get()));
         description.billboardError.push_back(
             description.billboardError.empty() ? 0.0f : float(level.epsilon / kBillboardPixels));
     }
@@ -306,11 +293,12 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches,
     const std::size_t bytes = selection_.instances.size() * sizeof(DrawInstance);
     if (bytes > instanceCapacity_) {
         instanceCapacity_ = bytes + bytes / 2;
-        glNamedBufferData(instanceBuffer_, GLsizeiptr(instanceCapacity_), nullptr, GL_STREAM_DRAW);
+        glNamedBufferData(instanceBuffer_.get(), GLsizeiptr(instanceCapacity_), nullptr,
+                          GL_STREAM_DRAW);
     } else {
-        glInvalidateBufferData(instanceBuffer_);
+        glInvalidateBufferData(instanceBuffer_.get());
     }
-    glNamedBufferSubData(instanceBuffer_, 0, GLsizeiptr(bytes), selection_.instances.data());
+    glNamedBufferSubData(instanceBuffer_.get(), 0, GLsizeiptr(bytes), selection_.instances.data());
     statistics_.uploadSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - uploadStart).count();
 
@@ -325,8 +313,9 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches,
 
     // Ellipsoids (point sprites, and quads for sprites too large), then lines: instanced
     // draws per species and bucket.
-    glVertexArrayVertexBuffer(primitiveArray_, 0, instanceBuffer_, 0, sizeof(DrawInstance));
-    glBindVertexArray(primitiveArray_);
+    glVertexArrayVertexBuffer(primitiveArray_.get(), 0, instanceBuffer_.get(), 0,
+                              sizeof(DrawInstance));
+    glBindVertexArray(primitiveArray_.get());
     glEnable(GL_PROGRAM_POINT_SIZE);
     const glm::vec2 viewport{float(pixelsWide), float(pixelsHigh)};
     // Tangent of the angle between the view axis and a frustum corner.
@@ -344,7 +333,7 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches,
             program.setFloat("uMaximumPointSize", maximumPointSize_);
         }
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, pass == 0 ? 0 : 1,
-                         pass == 0 ? ellipsoidBuffer_ : lineBuffer_);
+                         pass == 0 ? ellipsoidBuffer_.get() : lineBuffer_.get());
         for (const DrawRun& run : selection_.runs) {
             const std::uint32_t count = pass == 0 ? run.ellipsoids : run.lines;
             if (run.kind != DrawRun::Kind::Primitives || count == 0) {
@@ -447,7 +436,7 @@ void VegetationRenderer::drawMeshes(const std::vector<std::unique_ptr<Vegetation
         meshProgram_.setInt("uHasTexture", mesh->texture != 0 ? 1 : 0);
         meshProgram_.setFloat("uAmbientOcclusion", 1.0f);
         glBindTextureUnit(0, mesh->texture);
-        glBindVertexArray(mesh->vertexArray);
+        glBindVertexArray(mesh->vertexArray.get());
         glDrawElementsInstancedBaseInstance(GL_TRIANGLES, mesh->indexCount, GL_UNSIGNED_INT,
                                             nullptr, GLsizei(run.instanceCount), run.firstInstance);
         ++statistics_.drawCalls;

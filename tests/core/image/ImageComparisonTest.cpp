@@ -9,6 +9,7 @@
 #include "sylva/core/image/ColorDifference.h"
 #include "sylva/core/image/ContactSheet.h"
 #include "sylva/core/image/ImageWriter.h"
+#include "sylva/core/image/ToneMapping.h"
 
 namespace sylva {
 namespace {
@@ -72,6 +73,33 @@ TEST(ImageComparisonTest, SwipeAndSideBySide) {
     EXPECT_EQ(pair.value().width, 204);
     EXPECT_EQ(pair.value().at(99, 0)[0], 255);
     EXPECT_EQ(pair.value().at(104, 0)[2], 255);
+}
+
+// The float versions are the same templates: what they draw is the radiance that
+// displays as the 8-bit drawing, what they copy is copied unchanged.
+TEST(ImageComparisonTest, LinearVersionsDrawTheRadianceOfThe8BitDrawing) {
+    const LinearImage bright(100, 20, 7.0f, 0.5f, 0.25f);
+    const LinearImage dark(100, 20, 0.0f, 0.125f, 2.0f);
+    auto pair = ImageComparison::sideBySide(bright, dark, 4);
+    ASSERT_TRUE(pair.ok());
+    EXPECT_EQ(pair.value().width, 204);
+    EXPECT_EQ(pair.value().at(99, 3)[0], 7.0f);
+    EXPECT_EQ(pair.value().at(102, 3)[0], ToneMapping::radiance(16));  // gutter
+    EXPECT_EQ(pair.value().at(102, 3)[3], 1.0f);
+    EXPECT_EQ(pair.value().at(104, 3)[2], 2.0f);
+    auto swiped = ImageComparison::swipe(bright, dark, 0.3);
+    ASSERT_TRUE(swiped.ok());
+    EXPECT_EQ(swiped.value().at(10, 5)[0], 7.0f);
+    EXPECT_EQ(swiped.value().at(90, 5)[2], 2.0f);
+    EXPECT_EQ(swiped.value().at(30, 5)[1], ToneMapping::radiance(240));  // the divider
+    EXPECT_EQ(swiped.value().at(28, 5)[1], ToneMapping::radiance(32));   // its dark edges
+    EXPECT_EQ(swiped.value().at(31, 5)[1], ToneMapping::radiance(32));
+    auto half = ImageComparison::blend(bright, dark, 0.25);
+    ASSERT_TRUE(half.ok());
+    EXPECT_FLOAT_EQ(half.value().at(3, 3)[0], 0.75f * 7.0f);
+    EXPECT_FLOAT_EQ(half.value().at(3, 3)[2], 0.75f * 0.25f + 0.25f * 2.0f);
+    EXPECT_EQ(ImageComparison::swipe(bright, LinearImage(5, 20), 0.5).error().message,
+              "cannot compare images of different sizes (100x20 and 5x20)");
 }
 
 TEST(ImageComparisonTest, DifferenceIsZeroWhereEqualAndHotWhereNot) {

@@ -34,5 +34,19 @@ TEST(ToneMapping, WholeImageKeepsAlpha) {
     EXPECT_EQ(shown.at(1, 0)[3], 128);
 }
 
+// The inverse of a whole 8-bit image (PNG inputs of EXR comparisons) displays as it again.
+TEST(ToneMapping, WholeImageRadianceDisplaysAsTheImage) {
+    RgbaImage image(3, 2, 0, 0, 0, 0);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        image.pixels[i] = static_cast<std::uint8_t>(i * 23);
+    }
+    const LinearImage radiance = ToneMapping::radiance(image);
+    ASSERT_EQ(radiance.width, 3);
+    ASSERT_EQ(radiance.height, 2);
+    EXPECT_FLOAT_EQ(radiance.at(1, 0)[0], ToneMapping::radiance(std::uint8_t(4 * 23)));
+    EXPECT_FLOAT_EQ(radiance.at(1, 0)[3], float(7 * 23) / 255.0f);  // alpha stays linear
+    EXPECT_EQ(ToneMapping::display(radiance).pixels, image.pixels);
+}
+
 }  // namespace
 }  // namespace sylva

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <string>
 
+#include "GoldenImage.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/image/ImageComparison.h"
 #include "sylva/core/image/ImageWriter.h"
@@ -103,37 +104,9 @@ LinearImage linear(const Image& image) {
     return out;
 }
 
+// The comparison goldens are tests/render/goldens/comparison_<name>.png.
 void checkGolden(const RgbaImage& image, const std::string& name) {
-    const std::filesystem::path golden = std::filesystem::path(SYLVA_TEST_DATA_DIR) / "render" /
-                                         "goldens" / ("comparison_" + name + ".png");
-    const char* update = std::getenv("SYLVA_UPDATE_GOLDENS");
-    if (update != nullptr && std::string(update) == "1") {
-        ASSERT_TRUE(ImageWriter::writeRgba8(golden, image.width, image.height, image.pixels));
-        GTEST_SKIP() << "golden image updated: " << golden;
-    }
-    int width = 0, height = 0;
-    Result<std::vector<std::uint8_t>> expected = ImageWriter::readRgba8(golden, width, height);
-    ASSERT_TRUE(expected) << expected.error().message << " (create it with `make goldens`)";
-    ASSERT_EQ(width, image.width);
-    ASSERT_EQ(height, image.height);
-    double sum = 0;
-    int maxError = 0;
-    for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
-        for (int c = 0; c < 3; ++c) {
-            const int d = std::abs(int(image.pixels[i + c]) - int(expected.value()[i + c]));
-            sum += double(d) * d;
-            maxError = std::max(maxError, d);
-        }
-    }
-    const double rmse = std::sqrt(sum / (double(image.pixels.size()) / 4 * 3));
-    const bool ok = rmse <= 2.0 && maxError <= 96;
-    if (!ok) {
-        (void)ImageWriter::writeRgba8(
-            std::filesystem::path(SYLVA_TEST_OUTPUT_DIR) / ("comparison_" + name + ".actual.png"),
-            image.width, image.height, image.pixels);
-    }
-    EXPECT_TRUE(ok) << name << ": RMSE " << rmse << " (limit 2.0), max error " << maxError
-                    << " (limit 96)";
+    golden::checkGolden("comparison_" + name, image.width, image.height, image.pixels);
 }
 
 TEST(ComparisonGolden, Blend) {

@@ -5,7 +5,7 @@
 
 #include <string_view>
 
-#include "sylva/core/image/RgbaImage.h"
+#include "sylva/core/image/Image.h"
 
 namespace sylva {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "sylva/core/base/Result.h"
-#include "sylva/core/image/RgbaImage.h"
+#include "sylva/core/image/Image.h"
 
 namespace sylva {
 

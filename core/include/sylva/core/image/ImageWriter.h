@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "sylva/core/base/Result.h"
+#include "sylva/core/image/Image.h"
 #include "sylva/core/image/ImageMetadata.h"
-#include "sylva/core/image/LinearImage.h"
 
 namespace sylva {
 

@@ -6,8 +6,7 @@
 
 #include <cstdint>
 
-#include "sylva/core/image/LinearImage.h"
-#include "sylva/core/image/RgbaImage.h"
+#include "sylva/core/image/Image.h"
 
 namespace sylva {
 
@@ -20,6 +19,8 @@ public:
     // The inverse for drawn overlays (labels, dividers, heat maps): the radiance that
     // displays as this sRGB byte. 255 maps to a finite radiance (1 − 2⁻¹² on the curve).
     static float radiance(std::uint8_t srgb);
+    // The whole image (alpha ÷ 255): an 8-bit image as the radiance that displays as it.
+    static LinearImage radiance(const RgbaImage& image);
 };
 
 }  // namespace sylva

@@ -18,6 +18,7 @@
 #include <glm/vec4.hpp>
 
 #include "sylva/core/base/Result.h"
+#include "sylva/render/gl/GlHandle.h"
 
 namespace sylva::render {
 
@@ -30,7 +31,7 @@ public:
                                       bool withDepth);
 
     Framebuffer() = default;  // empty: id() == 0
-    ~Framebuffer();
+    // Moved-from framebuffers are empty (no attachments, size 0).
     Framebuffer(Framebuffer&& other) noexcept;
     Framebuffer& operator=(Framebuffer&& other) noexcept;
     Framebuffer(const Framebuffer&) = delete;
@@ -46,13 +47,13 @@ public:
     void clearColor(int attachment, const glm::vec4& color) const;
     void clearDepth(float depth) const;
 
-    std::uint32_t id() const { return framebuffer_; }
+    std::uint32_t id() const { return framebuffer_.get(); }
     int width() const { return width_; }
     int height() const { return height_; }
     int colorCount() const { return static_cast<int>(colorTextures_.size()); }
     std::uint32_t colorFormat(int index) const;
     std::uint32_t colorTexture(int index) const;
-    std::uint32_t depthTexture() const { return depthTexture_; }  // 0 without depth
+    std::uint32_t depthTexture() const { return depthTexture_.get(); }  // 0 without depth
 
     // Attachment `attachment` as RGBA8, width * height * 4 bytes, rows top to bottom.
     std::vector<std::uint8_t> readPixelsRGBA8(int attachment = 0) const;
@@ -63,15 +64,14 @@ public:
     std::vector<float> readDepth() const;
 
 private:
-    void release();
     // Reads the bound attachment (or depth when attachment < 0) into `out`, then flips rows.
     void readInto(int attachment, std::uint32_t format, std::uint32_t type, int bytesPerPixel,
                   void* out) const;
 
-    std::uint32_t framebuffer_ = 0;
-    std::vector<std::uint32_t> colorTextures_;
+    GlFramebuffer framebuffer_;
+    std::vector<GlTexture> colorTextures_;
     std::vector<std::uint32_t> colorFormats_;
-    std::uint32_t depthTexture_ = 0;
+    GlTexture depthTexture_;
     int width_ = 0;
     int height_ = 0;
 };

@@ -17,11 +17,13 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "sylva/core/base/Result.h"
+#include "sylva/render/gl/GlHandle.h"
 #include "sylva/render/gl/ShaderLibrary.h"
 
 namespace sylva::render {
@@ -40,14 +42,14 @@ public:
                                         std::string_view defines = {});
 
     ShaderProgram() = default;  // empty: id() == 0
-    ~ShaderProgram();
+    // A moved-from program is empty.
     ShaderProgram(ShaderProgram&& other) noexcept;
     ShaderProgram& operator=(ShaderProgram&& other) noexcept;
     ShaderProgram(const ShaderProgram&) = delete;
     ShaderProgram& operator=(const ShaderProgram&) = delete;
 
     void use() const;
-    std::uint32_t id() const { return program_; }
+    std::uint32_t id() const { return program_.get(); }
 
     // Location of a uniform (cached after the first lookup); -1 when it does not exist.
     int uniformLocation(std::string_view name);
@@ -64,7 +66,7 @@ public:
     void setMat4(std::string_view name, const glm::mat4& value);
 
 private:
-    explicit ShaderProgram(std::uint32_t program) : program_(program) {}
+    explicit ShaderProgram(GlProgram program) : program_(std::move(program)) {}
 
     // Heterogeneous lookup so string_view names need no allocation on cache hits.
     struct NameHash {
@@ -74,7 +76,7 @@ private:
         }
     };
 
-    std::uint32_t program_ = 0;
+    GlProgram program_;
     std::unordered_map<std::string, int, NameHash, std::equal_to<>> locations_;
 };
 

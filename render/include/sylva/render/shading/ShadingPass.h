@@ -11,6 +11,7 @@
 #include "sylva/core/base/Result.h"
 #include "sylva/core/scene/Camera.h"
 #include "sylva/render/gl/Framebuffer.h"
+#include "sylva/render/gl/GlHandle.h"
 #include "sylva/render/gl/ShaderLibrary.h"
 #include "sylva/render/gl/ShaderProgram.h"
 
@@ -25,7 +26,6 @@ struct ShadingSettings {
 class ShadingPass {
 public:
     static Result<std::unique_ptr<ShadingPass>> create(const ShaderLibrary& library);
-    ~ShadingPass();
 
     // Reads `gbuffer` (attachments 0 albedo, 1 normal, reversed-Z depth) and writes
     // `target` (attachment 0, RGBA8 sRGB-encoded; attachment 1 if present, a float
@@ -37,7 +37,7 @@ public:
 private:
     ShadingPass() = default;
     ShaderProgram program_;
-    std::uint32_t emptyVertexArray_ = 0;
+    GlVertexArray emptyVertexArray_;  // full-screen triangle: no attributes
 };
 
 }  // namespace sylva::render

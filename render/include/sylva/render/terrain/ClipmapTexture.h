@@ -5,8 +5,9 @@
 // CPU goes on), and counts the bytes it sends. Sampled with GL_REPEAT so the toroidal
 // addressing needs no shader logic.
 //
-// Ownership: move-only RAII over the GL texture; destroy it while its context is
-// current. Needs a current GL 4.5 context for every call.
+// Ownership: move-only RAII over the GL texture and pixel buffer (GlHandles; a moved-from
+// texture is empty); destroy it while its context is current. Needs a current GL 4.5 context for
+// every call.
 #pragma once
 
 #include <cstdint>
@@ -14,6 +15,7 @@
 
 #include "sylva/core/base/Result.h"
 #include "sylva/core/terrain/Clipmap.h"
+#include "sylva/render/gl/GlHandle.h"
 
 namespace sylva::render {
 
@@ -28,26 +30,21 @@ public:
     static Result<ClipmapTexture> create(int size, int levels, ClipmapFormat format);
 
     ClipmapTexture() = default;
-    ~ClipmapTexture();
-    ClipmapTexture(ClipmapTexture&& other) noexcept;
-    ClipmapTexture& operator=(ClipmapTexture&& other) noexcept;
-    ClipmapTexture(const ClipmapTexture&) = delete;
-    ClipmapTexture& operator=(const ClipmapTexture&) = delete;
 
     // Copies `regions` of `clipmap` (same size and level count) to the texture.
     void upload(const Clipmap& clipmap, const std::vector<Clipmap::Region>& regions);
     void bind(int unit) const;
 
-    std::uint32_t id() const { return texture_; }
+    std::uint32_t id() const { return texture_.get(); }
     std::uint64_t uploadedBytes() const { return uploadedBytes_; }
 
 private:
-    std::uint32_t texture_ = 0;
+    GlTexture texture_;
     int size_ = 0;
     int levels_ = 0;
     ClipmapFormat format_ = ClipmapFormat::Height;
     std::uint64_t uploadedBytes_ = 0;
-    std::uint32_t pixelBuffer_ = 0;
+    GlBuffer pixelBuffer_;  // created at the first upload
 };
 
 }  // namespace sylva::render

@@ -26,6 +26,7 @@
 #include "sylva/core/terrain/Clipmap.h"
 #include "sylva/core/terrain/LevelVisibility.h"
 #include "sylva/core/terrain/TerrainRings.h"
+#include "sylva/render/gl/GlHandle.h"
 #include "sylva/render/gl/ShaderLibrary.h"
 #include "sylva/render/gl/ShaderProgram.h"
 #include "sylva/render/terrain/ClipmapTexture.h"
@@ -88,13 +89,12 @@ public:
 private:
     TerrainRenderer() = default;
     struct Mesh {
-        std::uint32_t vertexArray = 0;
-        std::uint32_t vertexBuffer = 0;
-        std::uint32_t indexBuffer = 0;
+        GlVertexArray vertexArray;
+        GlBuffer vertexBuffer;
+        GlBuffer indexBuffer;
         std::int32_t indexCount = 0;
     };
     static Mesh upload(const TerrainMesh& mesh);
-    static void release(Mesh& mesh);
 
     TerrainSettings settings_;
     ShaderProgram program_;

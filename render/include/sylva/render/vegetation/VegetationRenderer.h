@@ -23,6 +23,7 @@
 #include "sylva/core/plantlod/PlantAsset.h"
 #include "sylva/core/scene/Camera.h"
 #include "sylva/core/vegetation/LodSelector.h"
+#include "sylva/render/gl/GlHandle.h"
 #include "sylva/render/gl/ShaderLibrary.h"
 #include "sylva/render/gl/ShaderProgram.h"
 
@@ -92,12 +93,12 @@ private:
     ShaderProgram meshProgram_;
     std::vector<std::unique_ptr<Species>> species_;
     std::vector<SpeciesLod> lods_;
-    std::uint32_t ellipsoidBuffer_ = 0, lineBuffer_ = 0;  // all species, concatenated
+    GlBuffer ellipsoidBuffer_, lineBuffer_;  // all species, concatenated
     std::uint32_t ellipsoidCount_ = 0, lineCount_ = 0;
-    std::uint32_t instanceBuffer_ = 0;
+    GlBuffer instanceBuffer_;
     std::size_t instanceCapacity_ = 0;
-    std::uint32_t primitiveArray_ = 0;  // VAO: instance attributes only
-    float maximumPointSize_ = 1.0f;     // pixels: the driver's largest point sprite
+    GlVertexArray primitiveArray_;   // instance attributes only
+    float maximumPointSize_ = 1.0f;  // pixels: the driver's largest point sprite
     LodSelection selection_;
     VegetationStatistics statistics_;
 };
