@@ -38,7 +38,7 @@ Status writeBands(GDALDatasetH ds, const ViewshedResult& result) {
             return Error{gdalReason("cannot write a band")};
     }
     std::vector<int> levels;
-    for (int f = 2; std::min(g.width, g.height) / f >= 64; f *= 2)
+    for (int f = 2; std::min(g.width, g.height) / f >= 16; f *= 2)
         levels.push_back(f);
     if (!levels.empty() && GDALBuildOverviews(ds, "NEAREST", int(levels.size()), levels.data(), 0,
                                               nullptr, nullptr, nullptr) != CE_None)
