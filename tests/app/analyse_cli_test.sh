@@ -3,6 +3,7 @@
 # gdal_translate, UTM 25S, 30 m) and small projects written into the scratch folder; the
 # GeoTIFF written is read back with GDAL (gdalinfo: size, origin, pixel size, CRS, bands,
 # compression, overviews), and broken projects give located errors and write nothing.
+# With the sample data, the keys of `sylva bench analysis --json`.
 #
 # usage: SYLVA_BIN=path/to/sylva bash analyse_cli_test.sh SCRATCH_DIR
 set -u
@@ -161,5 +162,20 @@ begin "--only with an unknown name -> error naming the blocks"
 expect_rc 1
 expect_stderr "--only mats: the project has no ztv block of that name (it has: mast)"
 end
+
+# `sylva bench analysis --json` (needs the Olinda DEM of scripts/fetch-samples): exactly
+# the five keys of issue 19, in order.
+REPO=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+if [ -f "$REPO/data/olinda/olinda_dem_utm25s.tif" ]; then
+    begin "bench analysis --json: exactly the five keys of issue 19"
+    (cd "$REPO" && "$SYLVA" bench analysis --json >"$OUT" 2>"$ERR"); RC=$?
+    expect_rc 0
+    keys=$(grep -o '"[a-z_0-9]*":' "$OUT" | tr -d '":' | paste -sd ' ')
+    expected="suite metrics ztv_cells_per_s gdal_viewshed_cells_per_s ztv_speed_vs_gdal ztv_agreement_gdal cumulative_ztv_20_targets_s"
+    [ "$keys" = "$expected" ] || fail "keys are '$keys'"
+    end
+else
+    echo "skip bench analysis: data/olinda/olinda_dem_utm25s.tif absent (run scripts/fetch-samples)"
+fi
 
 finish
