@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <limits>
 #include <system_error>
 #include <vector>
@@ -27,9 +28,10 @@ Status writeBands(GDALDatasetH ds, const ViewshedResult& result) {
     const char* names[] = {"visible", "count", "fraction"};
     for (int b = 0; b < 3; ++b) {
         for (std::size_t i = 0; i < band.size(); ++i)
-            band[i] = b == 0   ? float(result.visible[i])
-                      : b == 1 ? float(result.count[i])
-                               : result.fraction[i];
+            band[i] = std::isnan(result.fraction[i]) ? result.fraction[i]  // no data
+                      : b == 0                       ? float(result.visible[i])
+                      : b == 1                       ? float(result.count[i])
+                                                     : result.fraction[i];
         GDALRasterBandH h = GDALGetRasterBand(ds, b + 1);
         GDALSetDescription(h, names[b]);
         GDALSetRasterNoDataValue(h, std::numeric_limits<double>::quiet_NaN());
