@@ -2,7 +2,8 @@
 // suites can be added as one line each. Suite `dsl` parses, resolves and checks a
 // generated project of 5,000 lines (500 sources, 20 scenarios, 50 cameras). Suite
 // `vector` measures rasterize (polygons with outlines) and plants (scattering) tiles;
-// `plants` the plant generator, importer and billboard-cloud builder. Their bodies are
+// `plants` the plant generator, importer and billboard-cloud builder; `analysis` the
+// bare-earth ZTV against GDAL's viewshed. Their bodies are
 // in sylva_bench (bench/DslBenchmark.h, VectorBenchmark.h, PlantsBenchmark.h); the
 // suites with options of their own have their own commands (runTerrainBench, ...).
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include "CommandLine.h"
 #include "Commands.h"
 #include "ProjectSession.h"
+#include "sylva/bench/AnalysisBenchmark.h"
 #include "sylva/bench/DslBenchmark.h"
 #include "sylva/bench/PlantsBenchmark.h"
 #include "sylva/bench/VectorBenchmark.h"
@@ -60,6 +62,8 @@ const Suite kSuites[] = {
      [](bool json) { return printMetrics("vector", bench::runVectorBenchmark({}), json); }},
     {"plants",
      [](bool json) { return printMetrics("plants", bench::runPlantsBenchmark({}), json); }},
+    {"analysis",
+     [](bool json) { return printMetrics("analysis", bench::runAnalysisBenchmark({}), json); }},
 };
 
 // Suites with options and structured output of their own take over the command line.

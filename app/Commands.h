@@ -12,6 +12,7 @@ namespace sylva::app {
 int runRender(const std::vector<std::string>& arguments);
 int runWatch(const std::vector<std::string>& arguments);
 int runCheck(const std::vector<std::string>& arguments);
+int runAnalyse(const std::vector<std::string>& arguments);
 int runFmt(const std::vector<std::string>& arguments);
 int runDump(const std::vector<std::string>& arguments);
 int runDoc(const std::vector<std::string>& arguments);

@@ -25,6 +25,8 @@ void printUsage(std::FILE* stream) {
         "  check PROJECT [-D name=value] [--set block.attr=value] [--print-params] [--lenient]\n"
         "                [--diagnostics=text|json]\n"
         "                 report every problem in a project without rendering\n"
+        "  analyse PROJECT [--only NAME] [--out DIR] [--json] [-D name=value]\n"
+        "                 compute the project's ztv blocks and write their GeoTIFFs\n"
         "  fmt [--check] FILES...\n"
         "                 rewrite project files in canonical layout (--check: only report)\n"
         "  dump --json PROJECT [-D name=value] [--set block.attr=value]\n"
@@ -74,6 +76,9 @@ int main(int argc, char** argv) {
     }
     if (command == "check") {
         return sylva::app::runCheck(arguments);
+    }
+    if (command == "analyse") {
+        return sylva::app::runAnalyse(arguments);
     }
     if (command == "fmt") {
         return sylva::app::runFmt(arguments);

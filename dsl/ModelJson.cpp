@@ -107,6 +107,8 @@ std::string modelsToJson(const std::vector<ProjectModel>& models, int indent) {
         out["views"] = toJson(model.views);
         out["compares"] = toJson(model.compares);
         out["blends"] = toJson(model.blends);
+        if (!model.ztvs.empty())
+            out["ztvs"] = toJson(model.ztvs);
         scenarios.push_back(std::move(out));
     }
     Json root;

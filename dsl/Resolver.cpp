@@ -160,6 +160,8 @@ void Resolver::addToModel(ProjectModel& model, Block block) {
         model.blends.push_back(std::move(block));
     } else if (keyword == "path") {
         model.paths.push_back(std::move(block));
+    } else if (keyword == "ztv") {
+        model.ztvs.push_back(std::move(block));
     } else if (keyword == "project") {
         model.project = std::move(block);
         acceptProjectCrs(model.project);

@@ -658,6 +658,7 @@ SchemaRegistry makeBuiltin() {
     registry.setOutputFrom("blend", "base");
     registry.setOutputFrom("rasterize", "kind");
     addLanguageSchema(registry);
+    addAnalysisSchema(registry);
     return registry;
 }
 

@@ -99,5 +99,7 @@ private:
 // path) and extends views/scenario with their language-level attributes. Called at the
 // end of the builtin registry's construction (schema/LanguageSchema.cpp).
 void addLanguageSchema(SchemaRegistry& registry);
+// Registers the analysis blocks (ztv); schema/AnalysisSchema.cpp.
+void addAnalysisSchema(SchemaRegistry& registry);
 
 }  // namespace sylva

@@ -1,0 +1,36 @@
+// ZtvStudy: a `ztv` block of the project (core/model AnalysisSchema.cpp) turned into what
+// computeViewshed needs: the DEM file, the analysis grid in the DEM's CRS, the targets
+// transformed into that CRS (from WGS84 geodetic positions, as the DSL stores them) and
+// the options. planZtv opens the DEM (header only) to check the block against it.
+//
+// Failures are user errors, returned as Result errors that start with the attribute's
+// file:line:col and the block ("p.sylva:12:5: ztv 'mast': "): an elevation that is not a
+// raster file, a DEM that is not projected, an extent that is malformed or reaches outside
+// the DEM, a grid of more than kMaxCells cells, a target outside the extent.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sylva/core/analysis/ElevationGrid.h"
+#include "sylva/core/analysis/Viewshed.h"
+#include "sylva/core/base/Result.h"
+#include "sylva/core/model/ProjectModel.h"
+
+namespace sylva {
+
+struct ZtvStudy {
+    std::string name;
+    std::string demPath;  // the raster file, absolute or relative to the current folder
+    GridGeometry grid;    // in the DEM's CRS (metres)
+    std::string crsWkt;   // the DEM's CRS
+    std::vector<ViewshedTarget> targets;
+    ViewshedOptions options;
+    std::string output;  // `output` with {name} replaced, relative to the output folder
+
+    static constexpr double kMaxCells = 25.0e6;
+};
+
+Result<ZtvStudy> planZtv(const ProjectModel& model, const Block& block);
+
+}  // namespace sylva

@@ -1,0 +1,110 @@
+// The analysis blocks of the project language (issue 19): `ztv`, the bare-earth zone of
+// theoretical visibility that `sylva analyse` computes (core/analysis). Kept apart from
+// the source kinds and the render blocks so the analyses can grow on their own.
+#include <utility>
+
+#include "sylva/core/model/Schema.h"
+
+namespace sylva {
+namespace {
+
+AttributeSchema attribute(std::string name, ValueType type, std::string doc) {
+    AttributeSchema a;
+    a.name = std::move(name);
+    a.type = type;
+    a.doc = std::move(doc);
+    return a;
+}
+
+AttributeSchema length(std::string name, std::optional<double> defaultValue, double minimum,
+                       std::string doc) {
+    AttributeSchema a = attribute(std::move(name), ValueType::Number, std::move(doc));
+    a.dimension = Dimension::Length;
+    a.minimum = minimum;
+    a.maximum = 1.0e6;
+    if (defaultValue) {
+        Value v;
+        v.data = Quantity{*defaultValue, Dimension::Length};
+        a.defaultValue = v;
+    }
+    return a;
+}
+
+KindSchema ztvBlock() {
+    AttributeSchema elevation = attribute(
+        "elevation", ValueType::Reference,
+        "The terrain: a `raster` source (kind elevation or auto) whose file is a DEM in a "
+        "projected CRS in metres; its file is read directly, on its own grid's CRS.");
+    elevation.target = "source";
+    elevation.port = PortType::Elevation;
+    elevation.required = true;
+
+    AttributeSchema position =
+        attribute("position", ValueType::Geo,
+                  "Where the target stands: geo(lat, lon) or [x, y] in the project CRS.");
+    position.required = true;
+    AttributeSchema height =
+        length("height", std::nullopt, 0.01, "Height of the target's top above the ground.");
+    height.required = true;
+    AttributeSchema targets = attribute(
+        "targets", ValueType::List,
+        "The targets { position, height } (turbine tips, masts): the ZTV counts per cell how "
+        "many tops are visible.");
+    targets.element = ValueType::Object;
+    targets.required = true;
+    targets.fields = {position, height};
+
+    AttributeSchema extent =
+        attribute("extent", ValueType::List,
+                  "[west, south, east, north] in metres in the elevation raster's CRS; the "
+                  "whole raster when absent. Must lie inside the raster.");
+    extent.element = ValueType::Number;
+    extent.dimension = Dimension::Length;
+
+    AttributeSchema curvature =
+        attribute("curvature", ValueType::Bool,
+                  "Earth curvature: terrain sinks by d²/(2R)(1 − refraction) at distance d "
+                  "(R = 6 371 008.8 m).");
+    Value yes;
+    yes.data = true;
+    curvature.defaultValue = yes;
+
+    AttributeSchema refraction =
+        attribute("refraction", ValueType::Number,
+                  "Refraction coefficient k (0.13 standard, 0.075 in some practice notes).");
+    refraction.minimum = 0.0;
+    refraction.maximum = 0.99;
+    Value k;
+    k.data = Quantity{0.13, Dimension::None};
+    refraction.defaultValue = k;
+
+    AttributeSchema output = attribute(
+        "output", ValueType::String,
+        "GeoTIFF written by `sylva analyse` (relative to --out, default the current folder; "
+        "{name} is the block's name): bands visible (0/1), count of targets visible, fraction "
+        "of the height visible; DEFLATE, with overviews.");
+    Value path;
+    path.data = std::string("out/{name}.tif");
+    output.defaultValue = path;
+
+    return {
+        "ztv",
+        "",
+        PortType::None,
+        "A bare-earth zone of theoretical visibility: for each cell of the extent, are the "
+        "targets visible from an observer standing there (exact line of sight over the "
+        "DEM, with Earth curvature and refraction; docs/analysis.md).",
+        {elevation, targets,
+         length("observer_height", 2.0, 0.01, "Eye height above the ground at every cell."), extent,
+         length("resolution", std::nullopt, 1.0,
+                "Cell size of the analysis grid; the raster's cell size when absent."),
+         curvature, refraction, output}};
+}
+
+}  // namespace
+
+void addAnalysisSchema(SchemaRegistry& registry) {
+    registry.add(ztvBlock());
+}
+
+}  // namespace sylva

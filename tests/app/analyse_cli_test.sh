@@ -1,0 +1,181 @@
+#!/usr/bin/env bash
+# End-to-end tests of `sylva analyse`: a synthetic DEM (a hill on a plain, made here with
+# gdal_translate, UTM 25S, 30 m) and small projects written into the scratch folder; the
+# GeoTIFF written is read back with GDAL (gdalinfo: size, origin, pixel size, CRS, bands,
+# compression, overviews), and broken projects give located errors and write nothing.
+# With the sample data, the keys of `sylva bench analysis --json`.
+#
+# usage: SYLVA_BIN=path/to/sylva bash analyse_cli_test.sh SCRATCH_DIR
+set -u
+
+if [ $# -ne 1 ]; then
+    echo "usage: SYLVA_BIN=... $0 SCRATCH_DIR" >&2
+    exit 2
+fi
+SCRATCH=$1
+SYLVA=${SYLVA_BIN:?set SYLVA_BIN to the sylva binary}
+rm -rf "$SCRATCH"
+mkdir -p "$SCRATCH"
+SCRATCH=$(cd "$SCRATCH" && pwd)
+# shellcheck source=lib.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+
+# The DEM: 60 x 50 cells of 30 m from (290000, 9116500), a 60 m hill at the centre.
+{
+    echo "ncols 60"; echo "nrows 50"; echo "xllcorner 290000"; echo "yllcorner 9115000"
+    echo "cellsize 30"
+    awk 'BEGIN { for (r = 0; r < 50; r++) { line = ""; for (c = 0; c < 60; c++) {
+        d2 = ((c - 30) ^ 2 + (r - 25) ^ 2) / 60.0; line = line sprintf("%.2f ", 10 + 60 * exp(-d2)) }
+        print line } }'
+} >"$SCRATCH/dem.asc"
+gdal_translate -q -a_srs EPSG:32725 "$SCRATCH/dem.asc" "$SCRATCH/dem.tif" || { echo "gdal_translate failed"; exit 1; }
+
+# project NAME BODY: a project file with the DEM source and BODY appended.
+project() {
+    {
+        echo 'source dem : raster { file = "dem.tif"; kind = elevation }'
+        echo 'source hills : noise {}'
+        printf '%s\n' "$2"
+    } >"$SCRATCH/$1.sylva"
+}
+# expect_nothing_written: no .tif nor temporary file under the output folder.
+expect_nothing_written() {
+    local found
+    found=$(find "$SCRATCH/out" \( -name '*.tif' -o -name '.sylva-*' \) -print 2>/dev/null)
+    [ -z "$found" ] || fail "files left behind: $found"
+}
+
+begin "no project -> usage, exit 2"
+run analyse
+expect_rc 2
+expect_stderr "analyse needs exactly one project file"
+end
+
+# The hill top is at cell (30, 25): x = 290000 + 30.5 * 30, y = 9116500 - 25.5 * 30.
+project good 'ztv mast {
+    elevation = @dem
+    targets = [{ position = [290915m, 9115735m], height = 40m }]
+    extent = [290150m, 9115300m, 291350m, 9116380m]
+    resolution = 30m
+    output = "out/{name}.tif"
+}
+project { crs = "EPSG:32725" }'
+
+begin "analyse writes a georeferenced, compressed GeoTIFF with overviews"
+(cd "$SCRATCH" && "$SYLVA" analyse good.sylva --json >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 0
+expect_stdout '"name": "mast"'
+expect_stdout '"cells": 1440'
+expect_stderr "ztv 'mast': 40 x 36 cells of 30.0 m, 1 target(s)"
+tif=$SCRATCH/out/mast.tif
+if [ -f "$tif" ]; then
+    info=$(gdalinfo "$tif")
+    grep -qF "Size is 40, 36" <<<"$info" || fail "size: $(grep 'Size is' <<<"$info")"
+    grep -qF "Origin = (290150.000000000000000,9116380.000000000000000)" <<<"$info" ||
+        fail "origin: $(grep Origin <<<"$info")"
+    grep -qF "Pixel Size = (30.000000000000000,-30.000000000000000)" <<<"$info" ||
+        fail "pixel size: $(grep 'Pixel Size' <<<"$info")"
+    grep -qF 'ID["EPSG",32725]' <<<"$info" || fail "CRS is not EPSG:32725"
+    grep -qF "COMPRESSION=DEFLATE" <<<"$info" || fail "not DEFLATE-compressed"
+    [ "$(grep -c 'Overviews: 20x18' <<<"$info")" -eq 3 ] || fail "bands lack overviews"
+    for band in visible count fraction; do
+        grep -qF "Description = $band" <<<"$info" || fail "no band '$band'"
+    done
+    # The hill top sees the mast: pixel (25, 21) of the grid is the top cell (30, 25) of the DEM.
+    value=$(gdallocationinfo -valonly -b 3 "$tif" 25 21)
+    [ "$value" = "1" ] || fail "the hill top does not see all of the mast (fraction = '$value')"
+else
+    fail "no $tif"
+fi
+[ -z "$(find "$SCRATCH/out" -name '.sylva-*')" ] || fail "temporary file left behind"
+end
+
+project outside 'ztv mast {
+    elevation = @dem
+    targets = [{ position = [290915m, 9115735m], height = 40m }]
+    extent = [289000m, 9115300m, 291350m, 9116380m]
+}
+project { crs = "EPSG:32725" }'
+begin "extent outside the DEM -> located error, nothing written"
+rm -rf "$SCRATCH/out"
+(cd "$SCRATCH" && "$SYLVA" analyse outside.sylva >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 1
+expect_stderr "outside.sylva:6:14: ztv 'mast': the extent reaches outside the elevation raster"
+expect_nothing_written
+end
+
+project target 'ztv mast {
+    elevation = @dem
+    targets = [
+        { position = [290915m, 9115735m], height = 40m },
+        { position = [291700m, 9115735m], height = 40m },
+    ]
+    extent = [290150m, 9115300m, 291350m, 9116380m]
+}
+project { crs = "EPSG:32725" }'
+begin "target outside the extent -> located error at the target, nothing written"
+rm -rf "$SCRATCH/out"
+(cd "$SCRATCH" && "$SYLVA" analyse target.sylva >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 1
+expect_stderr "target.sylva:7:9: ztv 'mast': the target lies outside the extent"
+expect_nothing_written
+end
+
+project height 'ztv mast {
+    elevation = @dem
+    targets = [{ position = geo(-8deg, -34.9deg), height = -5m }]
+}'
+begin "non-positive target height -> located DSL error"
+(cd "$SCRATCH" && "$SYLVA" analyse height.sylva >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 1
+expect_stderr "error[E0404]: value out of range for 'height'"
+expect_stderr "height.sylva:5:60"
+expect_nothing_written
+end
+
+project fine 'ztv mast {
+    elevation = @dem
+    targets = [{ position = [290915m, 9115735m], height = 40m }]
+    resolution = 0.1m
+}
+project { crs = "EPSG:32725" }'
+begin "resolution below the limit -> located DSL error"
+(cd "$SCRATCH" && "$SYLVA" analyse fine.sylva >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 1
+expect_stderr "fine.sylva:6:18"
+expect_stderr "is below the minimum 1m"
+end
+
+project noise 'ztv mast {
+    elevation = @hills
+    targets = [{ position = [290915m, 9115735m], height = 40m }]
+}
+project { crs = "EPSG:32725" }'
+begin "elevation that is no raster source -> located error"
+(cd "$SCRATCH" && "$SYLVA" analyse noise.sylva >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 1
+expect_stderr "noise.sylva:4:17: ztv 'mast': 'hills' is a noise source; a ztv needs a raster source"
+end
+
+begin "--only with an unknown name -> error naming the blocks"
+(cd "$SCRATCH" && "$SYLVA" analyse good.sylva --only mats >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 1
+expect_stderr "--only mats: the project has no ztv block of that name (it has: mast)"
+end
+
+# `sylva bench analysis --json` (needs the Olinda DEM of scripts/fetch-samples): exactly
+# the five keys of issue 19, in order.
+REPO=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+if [ -f "$REPO/data/olinda/olinda_dem_utm25s.tif" ]; then
+    begin "bench analysis --json: exactly the five keys of issue 19"
+    (cd "$REPO" && "$SYLVA" bench analysis --json >"$OUT" 2>"$ERR"); RC=$?
+    expect_rc 0
+    keys=$(grep -o '"[a-z_0-9]*":' "$OUT" | tr -d '":' | paste -sd ' ')
+    expected="suite metrics ztv_cells_per_s gdal_viewshed_cells_per_s ztv_speed_vs_gdal ztv_agreement_gdal cumulative_ztv_20_targets_s"
+    [ "$keys" = "$expected" ] || fail "keys are '$keys'"
+    end
+else
+    echo "skip bench analysis: data/olinda/olinda_dem_utm25s.tif absent (run scripts/fetch-samples)"
+fi
+
+finish
