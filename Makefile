@@ -1,6 +1,6 @@
 # Sylva: entry points for people and CI.
 #   make demo     set up, fetch samples, build, render the demo project, list the images
-#   make test     set up, build (warnings are errors), run the whole test suite
+#   make test     set up, fetch samples, build (warnings are errors), run the whole test suite
 # Both do all set-up on a fresh Debian 12 machine (scripts/setup needs root or sudo).
 #
 # Variables (override on the command line, e.g. `make test BUILD_DIR=build-asan`):
@@ -56,7 +56,7 @@ endef
 
 help:
 	@echo "make demo     set up, fetch samples, build, render $(DEMO_PROJECT) into $(DEMO_OUT)"
-	@echo "make test     set up, build with SYLVA_WERROR=$(WERROR_TEST), run all tests (ctest)"
+	@echo "make test     set up, fetch samples, build with SYLVA_WERROR=$(WERROR_TEST), run all tests (ctest)"
 	@echo "make setup    install the Debian packages (scripts/setup)"
 	@echo "make samples  fetch the sample data into data/ (scripts/fetch-samples)"
 	@echo "make build    Release build into $(BUILD_DIR)/ (SYLVA_WERROR=$(WERROR_BUILD))"
@@ -88,6 +88,7 @@ demo:
 # is built in $(TSAN_DIR); any report fails the build (halt_on_error).
 test:
 	scripts/setup
+	scripts/fetch-samples
 	$(call cmake_build,$(WERROR_TEST))
 	ctest --test-dir $(BUILD_DIR) --output-on-failure --no-tests=error -j2 2>&1 | $(CTEST_SUMMARY_LAST)
 	$(MAKE) --no-print-directory tsan
