@@ -159,8 +159,10 @@ void expectAnalyticEllipsoidDepth(int width, int height, double north, bool quad
     // An oblate, rotated ellipsoid (2 × 1.2 × 0.15 m) 1.5 m above the base.
     const glm::mat3 axes =
         glm::mat3(glm::rotate(glm::mat4(1.0f), 0.6f, glm::normalize(glm::vec3(1, 2, 3))));
-    const std::uint32_t species = renderer.addSpecies(
+    const Result<std::uint32_t> added = renderer.addSpecies(
         singleEllipsoid(glm::vec3(0, 0, 1.5f), glm::vec3(2.0f, 1.2f, 0.15f), axes));
+    ASSERT_TRUE(added) << added.error().message;
+    const std::uint32_t species = added.value();
     InstancePlacement p = VegetationRendererTest::placement(north, 0.0, 0.4f, 1.3f);
     p.species = species;
     const InstanceBatch batch = LodSelector::makeBatch(p.baseEcef, {p}, renderer.speciesLods());
