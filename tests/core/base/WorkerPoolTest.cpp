@@ -74,6 +74,8 @@ TEST(WorkerPool, NestedRunCompletesOnTheBodysThread) {
                 if (gettid() != self) {
                     foreign.fetch_add(1);
                 }
+                // Slow enough that idle threads would join a parallel inner loop.
+                std::this_thread::sleep_for(std::chrono::microseconds(50));
             });
         });
         expectEachOnce(calls);
@@ -123,8 +125,12 @@ TEST(WorkerPool, SerialThreadRunsOnItself) {
         WorkerPool::runSeriallyOnThisThread();
         self = gettid();
         ThreadIds ids;
-        pool.run(500, [&](int) { ids.record(); });
-        WorkerPool::shared().run(500, [&](int) { ids.record(); });
+        const auto body = [&](int) {
+            ids.record();
+            std::this_thread::sleep_for(std::chrono::microseconds(20));
+        };
+        pool.run(500, body);
+        WorkerPool::shared().run(500, body);
         seen = ids.ids();
     });
     thread.join();
