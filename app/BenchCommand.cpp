@@ -10,6 +10,7 @@
 #include <initializer_list>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "CommandLine.h"
 #include "Commands.h"
@@ -61,42 +62,49 @@ const Suite kSuites[] = {
      [](bool json) { return printMetrics("plants", bench::runPlantsBenchmark({}), json); }},
 };
 
-}  // namespace
+// Suites with options and structured output of their own take over the command line.
+struct CommandSuite {
+    const char* name;
+    int (*run)(const std::vector<std::string>& arguments);
+};
 
-int runBench(const std::vector<std::string>& arguments) {
-    // Suites with options and structured output of their own take over the command.
-    if (!arguments.empty() && arguments[0] == "terrain") {
-        return runTerrainBench(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
-    }
-    if (!arguments.empty() && arguments[0] == "tiles") {
-        return runTilesBench(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
-    }
-    if (!arguments.empty() && arguments[0] == "vegetation") {
-        return runVegetationBench(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
-    }
-    if (!arguments.empty() && arguments[0] == "turnaround") {
-        return runTurnaroundBench(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
-    }
-    if (!arguments.empty() && arguments[0] == "plantlod") {
-        return runPlantLodBench(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
-    }
-    const ParsedCommandLine command =
-        parseCommandLine(arguments, {{"help", false}, {"json", false}});
+const CommandSuite kCommandSuites[] = {
+    {"terrain", runTerrainBench},       {"tiles", runTilesBench},
+    {"plantlod", runPlantLodBench},     {"turnaround", runTurnaroundBench},
+    {"vegetation", runVegetationBench},
+};
+
+// Every suite's name, in the order `sylva bench --help` lists them.
+std::string suiteNames() {
     std::string names;
     for (const Suite& suite : kSuites) {
         append(names, {names.empty() ? "" : ", ", suite.name});
     }
+    for (const CommandSuite& suite : kCommandSuites) {
+        append(names, {", ", suite.name});
+    }
+    return names;
+}
+
+}  // namespace
+
+int runBench(const std::vector<std::string>& arguments) {
+    if (!arguments.empty()) {
+        for (const CommandSuite& suite : kCommandSuites) {
+            if (arguments[0] == suite.name) {
+                return suite.run(std::vector<std::string>(arguments.begin() + 1, arguments.end()));
+            }
+        }
+    }
+    const ParsedCommandLine command =
+        parseCommandLine(arguments, {{"help", false}, {"json", false}});
+    const std::string names = suiteNames();
     if (command.has("help")) {
-        std::printf(
-            "usage: sylva bench SUITE [--json]\nsuites: %s, terrain, tiles, plantlod, turnaround, "
-            "vegetation\n",
-            names.c_str());
+        std::printf("usage: sylva bench SUITE [--json]\nsuites: %s\n", names.c_str());
         return 0;
     }
     if (!command.error.empty() || command.positional.size() != 1) {
-        reportError(command.error.empty() ? "bench needs one suite: " + names +
-                                                ", terrain, tiles, plantlod, turnaround, vegetation"
-                                          : command.error);
+        reportError(command.error.empty() ? "bench needs one suite: " + names : command.error);
         return 2;
     }
     for (const Suite& suite : kSuites) {

@@ -41,7 +41,7 @@ void printUsage(std::FILE* stream) {
         "                 a .plod: levels, primitive counts, errors and bytes; a model\n"
         "                 (.gltf, .glb, .obj): import it and summarise it\n"
         "  bench SUITE [--json]\n"
-        "                 run a benchmark suite (dsl, terrain, plantlod)\n"
+        "                 run a benchmark suite (sylva bench --help lists them)\n"
         "\n"
         "environment:\n"
         "  SYLVA_GL=egl|osmesa|glfw   OpenGL back end (default: EGL, falling back to OSMesa)\n"

@@ -54,6 +54,18 @@ usage_error "--restarts needs a positive integer, got '99999999999'" \
 usage_error "--ao-samples needs a non-negative integer, got ''" \
     plant build --synthetic 10 --ao-samples= -o "$SCRATCH/a.plod"
 
+# --- suite names: every message lists every suite ----------------------------------
+
+suites="dsl, vector, plants, terrain, tiles, plantlod, turnaround, vegetation"
+usage_error "unknown bench suite 'nope' (suites: $suites)" bench nope
+usage_error "bench needs one suite: $suites" bench
+
+begin "bench --help lists every suite"
+run bench --help
+expect_rc 0
+expect_stdout "suites: $suites"
+end
+
 # --- bench dsl: keys, order and format ---------------------------------------------
 
 begin "bench dsl --json: exactly check_ms_5k_lines and lines, three decimals"
