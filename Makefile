@@ -9,7 +9,7 @@
 #   JOBS          parallel build jobs (default: nproc)
 #   CMAKE_ARGS    extra arguments for the CMake configure step
 #   TSAN_DIR      ThreadSanitizer build folder of `make test` (default: build-tsan)
-#   TSAN_TESTS    gtest filter run under ThreadSanitizer (the threaded tile code)
+#   TSAN_TESTS    gtest filter run under ThreadSanitizer (the threaded tile code, WorkerPool)
 
 BUILD_DIR    ?= build
 JOBS         ?= $(shell nproc 2>/dev/null || echo 2)
@@ -18,7 +18,7 @@ DEMO_PROJECT ?= projects/demo/demo.sylva
 DEMO_OUT     ?= out/demo
 SYLVA_BIN     = $(BUILD_DIR)/bin/sylva
 TSAN_DIR     ?= build-tsan
-TSAN_TESTS   ?= Scheduler.*:TileCache.*:TileEvaluator.*:Clipmap.*
+TSAN_TESTS   ?= Scheduler.*:TileCache.*:TileEvaluator.*:Clipmap.*:WorkerPool.*:LodSelectorScene.SelectionIs*
 
 # An explicit SYLVA_WERROR (command line or environment) wins everywhere.
 ifdef SYLVA_WERROR

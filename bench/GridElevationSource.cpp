@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "sylva/core/base/Hash.h"
-#include "sylva/core/base/ParallelFor.h"
+#include "sylva/core/base/WorkerPool.h"
 
 namespace sylva::bench {
 
@@ -43,7 +43,9 @@ GridElevationSource::GridElevationSource(std::string name, ElevationGrid grid, d
 Result<TilePointer> GridElevationSource::produce(const TileKey& key, TileProvider& provider) const {
     const TileFormat& format = provider.format();
     auto tile = std::make_shared<ImageTile>(key, format.size, format.border, 1);
-    parallelFor(-format.border, format.size + format.border, [&](int iy) {
+    const int first = -format.border;
+    WorkerPool::shared().run(format.size + 2 * format.border, [&](int row) {
+        const int iy = first + row;
         const double latitude = tile->texelLatitude(iy);
         for (int ix = -format.border; ix < format.size + format.border; ++ix) {
             tile->at(ix, iy, 0) =

@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "sylva/core/base/ParallelFor.h"
+#include "sylva/core/base/WorkerPool.h"
 #include "sylva/core/geo/Ellipsoid.h"
 
 namespace sylva::bench {
@@ -23,7 +23,7 @@ Result<GridMesh> GridMesh::create(const ShaderLibrary& library, const ElevationG
     mesh.program_ = std::move(program.value());
     mesh.centre_ = centre;
     std::vector<float> positions(std::size_t(grid.width) * grid.height * 3);
-    parallelFor(0, grid.height, [&](int row) {
+    WorkerPool::shared().run(grid.height, [&](int row) {
         const double latitude = grid.north - row * grid.sampleSpacingLatitude();
         for (int column = 0; column < grid.width; ++column) {
             const std::size_t i = std::size_t(row) * grid.width + column;
@@ -37,7 +37,7 @@ Result<GridMesh> GridMesh::create(const ShaderLibrary& library, const ElevationG
         }
     });
     std::vector<std::uint32_t> indices(std::size_t(grid.width - 1) * (grid.height - 1) * 6);
-    parallelFor(0, grid.height - 1, [&](int row) {
+    WorkerPool::shared().run(grid.height - 1, [&](int row) {
         std::size_t k = std::size_t(row) * (grid.width - 1) * 6;
         for (int column = 0; column < grid.width - 1; ++column) {
             const std::uint32_t a = std::uint32_t(row * grid.width + column);

@@ -13,7 +13,7 @@
 #include "GridElevationSource.h"
 #include "GridMesh.h"
 #include "sylva/bench/BenchmarkMetrics.h"
-#include "sylva/core/base/ParallelFor.h"
+#include "sylva/core/base/WorkerPool.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/scheduler/Scheduler.h"
@@ -64,7 +64,7 @@ ElevationGrid makeDem(int samples, double degrees) {
     grid.north = kCentreLatitude + degrees / 2 * kDegree;
     grid.heights.resize(std::size_t(samples) * samples);
     const double footprint = grid.sampleSpacingLatitude() * Ellipsoid::kMeanRadius;
-    parallelFor(0, samples, [&](int row) {
+    WorkerPool::shared().run(samples, [&](int row) {
         const double latitude = grid.north - row * grid.sampleSpacingLatitude();
         for (int column = 0; column < samples; ++column) {
             const double longitude = grid.west + column * grid.sampleSpacingLongitude();
@@ -83,7 +83,7 @@ ElevationGrid upsample(const ElevationGrid& grid, int factor) {
     fine.width = (grid.width - 1) * factor + 1;
     fine.height = (grid.height - 1) * factor + 1;
     fine.heights.assign(std::size_t(fine.width) * fine.height, 0.0f);
-    parallelFor(0, fine.height, [&](int row) {
+    WorkerPool::shared().run(fine.height, [&](int row) {
         const double latitude = fine.north - row * fine.sampleSpacingLatitude();
         for (int column = 0; column < fine.width; ++column) {
             fine.heights[std::size_t(row) * fine.width + column] =

@@ -273,7 +273,11 @@ public:
             return created.error();
         }
         scene->renderer_ = std::move(created.value());
-        scene->species_ = scene->renderer_->vegetation().addSpecies(std::move(asset));
+        Result<std::uint32_t> species = scene->renderer_->vegetation().addSpecies(std::move(asset));
+        if (!species) {
+            return species.error();
+        }
+        scene->species_ = species.value();
         return scene;
     }
 
@@ -492,13 +496,14 @@ std::pair<double, double> selectionMilliseconds(const std::vector<InstanceBatch>
     LodSelectionSettings selection;
     selection.pixelAngle = 2.0 * std::tan(25.0 * kDegree) / options.height;
     LodSelector::setFrustum(selection, 50.0 * kDegree, double(options.width) / options.height);
+    LodSelector selector;
     LodSelection out;
     std::vector<double> selectMilliseconds;
     for (int run = 0; run < 3; ++run) {
         for (int segment = 1; segment <= segments; ++segment) {
             const Camera c = cameraAt(kPath, double(segment) - 0.5);
             const auto start = std::chrono::steady_clock::now();
-            LodSelector::select(pointers(batches), lods, c, selection, out);
+            selector.select(pointers(batches), lods, c, selection, out);
             selectMilliseconds.push_back(
                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                     .count());

@@ -5,7 +5,7 @@
 #include <limits>
 #include <string>
 
-#include "sylva/core/base/ParallelFor.h"
+#include "sylva/core/base/WorkerPool.h"
 
 namespace sylva {
 
@@ -129,7 +129,7 @@ Result<ViewshedResult> computeViewshed(const ElevationGrid& grid,
     result.visible.assign(cells, 0);
     result.count.assign(cells, 0);
     result.fraction.assign(cells, 0.0f);
-    parallelFor(0, g.height, [&](int row) {
+    WorkerPool::shared().run(g.height, [&](int row) {
         for (int col = 0; col < g.width; ++col) {
             const std::size_t i = std::size_t(row) * std::size_t(g.width) + std::size_t(col);
             if (std::isnan(grid.at(col, row))) {

@@ -7,13 +7,17 @@
 #include <optional>
 #include <random>
 
-#include "sylva/core/plantlod/PlantThreads.h"
+#include "sylva/core/base/WorkerPool.h"
 
 namespace sylva {
 
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+WorkerPool& poolOf(const AmbientOcclusionOptions& options) {
+    return options.pool != nullptr ? *options.pool : WorkerPool::shared();
+}
 
 float luminance(const glm::vec3& c) {
     return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
@@ -424,7 +428,7 @@ double outsideAverage(const TraceScene& scene, const Box& bounds, float error,
     const int rays = options.calibrationRays;
     std::vector<double> sums(rays, 0.0);
     std::vector<char> hits(rays, 0);
-    runOnThreads(rays, options.threads, [&](int i) {
+    poolOf(options).run(rays, [&](int i) {
         std::mt19937_64 random(options.seed * 0x9E3779B97F4A7C15ull + salt * 7919ull + i);
         const glm::vec3 origin = center + radius * randomUnit(random);
         std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -652,7 +656,7 @@ void computeAmbientOcclusion(const PlantModel& model, PlantLod& lod,
             }
         }
         std::vector<float> values(work.size(), 1.0f);
-        runOnThreads(static_cast<int>(work.size()), options.threads, [&](int w) {
+        poolOf(options).run(static_cast<int>(work.size()), [&](int w) {
             const std::uint32_t item = work[w];
             const std::size_t global =
                 level.isEllipsoid(item)

@@ -737,6 +737,11 @@ Status checkOptions(const PlantModel& model, const BillboardCloudOptions& option
                      "': needs epsilons, 1 <= minimumPlanes <= maximumPlanes and texelsAcrossModel "
                      "in [16, 4096]"};
     }
+    if (options.epsilons.size() > kMaxBillboardLevels) {
+        return Error{"billboard cloud of '" + model.name +
+                     "': " + std::to_string(options.epsilons.size()) + " epsilons, at most " +
+                     std::to_string(kMaxBillboardLevels) + " levels are supported"};
+    }
     for (float epsilon : options.epsilons) {
         if (!(epsilon > 0.0f && epsilon < 1.0f)) {
             return Error{"billboard cloud of '" + model.name +

@@ -10,9 +10,9 @@
 #include <tuple>
 
 #include "TexelColour.h"
+#include "sylva/core/base/WorkerPool.h"
 #include "sylva/core/plantlod/EllipsoidFit.h"
 #include "sylva/core/plantlod/ImageErrorMetric.h"
-#include "sylva/core/plantlod/PlantThreads.h"
 
 namespace sylva {
 
@@ -278,10 +278,10 @@ std::vector<LodEllipsoid> ellipsoidsFromAssignments(std::span<const LodEllipsoid
 double ellipsoidImageError(const PrimitiveRasterizer& rasterizer,
                            std::span<const LodEllipsoid> ellipsoids,
                            const std::vector<std::vector<float>>& reference,
-                           const EllipsoidStyle& style, int threads) {
+                           const EllipsoidStyle& style, WorkerPool& pool) {
     const int views = rasterizer.viewCount();
     std::vector<std::vector<double>> perView(views);
-    runOnThreads(views, threads, [&](int view) {
+    pool.run(views, [&](int view) {
         thread_local RasterFrame frame;
         rasterizer.clearFrame(frame);
         rasterizer.drawEllipsoids(ellipsoids, view, frame, style);
@@ -379,12 +379,12 @@ private:
 // Level 0: the imported leaves, scale calibrated (§3.3.3).
 EllipsoidLevel leafLevel(std::span<const LodEllipsoid> leaves,
                          const PrimitiveRasterizer& rasterizer,
-                         const std::vector<std::vector<float>>& reference, int threads) {
+                         const std::vector<std::vector<float>>& reference, WorkerPool& pool) {
     EllipsoidLevel level;
     level.ellipsoids.assign(leaves.begin(), leaves.end());
     const auto [scale, error] = calibrateScale(
         [&](float s) {
-            return ellipsoidImageError(rasterizer, leaves, reference, {s, 0.0f}, threads);
+            return ellipsoidImageError(rasterizer, leaves, reference, {s, 0.0f}, pool);
         },
         0.5f, 6.0f, 12);
     level.primitiveScale = scale;
@@ -400,7 +400,7 @@ std::vector<LodEllipsoid> bestClustering(std::span<const LodEllipsoid> leaves, i
                                          int levelIndex, const EllipsoidStyle& style,
                                          const PrimitiveRasterizer& rasterizer,
                                          const std::vector<std::vector<float>>& reference,
-                                         const EllipsoidHierarchyOptions& options, int threads,
+                                         const EllipsoidHierarchyOptions& options, WorkerPool& pool,
                                          HierarchyProgress& progress) {
     std::vector<glm::dvec3> centers(leaves.size());
     std::vector<double> weights(leaves.size());
@@ -413,7 +413,7 @@ std::vector<LodEllipsoid> bestClustering(std::span<const LodEllipsoid> leaves, i
         double error = 0.0;
     };
     std::vector<Run> runs(options.restarts);
-    runOnThreads(options.restarts, threads, [&](int restart) {
+    pool.run(options.restarts, [&](int restart) {
         std::mt19937_64 random(options.seed * 0x9E3779B97F4A7C15ull + levelIndex * 1000003ull +
                                restart);
         std::vector<int> order(leaves.size());
@@ -429,7 +429,7 @@ std::vector<LodEllipsoid> bestClustering(std::span<const LodEllipsoid> leaves, i
         Run run;
         run.ellipsoids = ellipsoidsFromAssignments(leaves, fit);
         discardSmall(run.ellipsoids, options.discardAreaFraction);
-        run.error = ellipsoidImageError(rasterizer, run.ellipsoids, reference, style, 1);
+        run.error = ellipsoidImageError(rasterizer, run.ellipsoids, reference, style, pool);
         runs[restart] = std::move(run);
         progress.restartFinished(levelIndex);
     });
@@ -447,13 +447,13 @@ std::vector<LodEllipsoid> bestClustering(std::span<const LodEllipsoid> leaves, i
 // coarse levels), then the neighbours of the best one.
 void calibrateThreshold(EllipsoidLevel& level, float previousScale,
                         const PrimitiveRasterizer& rasterizer,
-                        const std::vector<std::vector<float>>& reference, int threads) {
+                        const std::vector<std::vector<float>>& reference, WorkerPool& pool) {
     level.imageError = std::numeric_limits<double>::infinity();
     const auto tryThreshold = [&](float threshold) {
         const auto [scale, error] = calibrateScale(
             [&](float s) {
                 return ellipsoidImageError(rasterizer, level.ellipsoids, reference, {s, threshold},
-                                           threads);
+                                           pool);
             },
             0.5f * previousScale, 3.0f * previousScale, 5);
         if (error < level.imageError) {
@@ -486,10 +486,10 @@ std::vector<EllipsoidLevel> buildEllipsoidHierarchy(
     const std::vector<int> targets = levelTargets(leaves.size());
     const int levelCount = static_cast<int>(targets.size()) + 1;
     HierarchyProgress report(progress, levelCount, options.restarts, progressStart, progressEnd);
-    const int threads = resolveThreadCount(options.threads);
+    WorkerPool& pool = options.pool != nullptr ? *options.pool : WorkerPool::shared();
 
     report.level(0);
-    levels.push_back(leafLevel(leaves, rasterizer, reference, threads));
+    levels.push_back(leafLevel(leaves, rasterizer, reference, pool));
     for (std::size_t li = 0; li < targets.size(); ++li) {
         const int levelIndex = static_cast<int>(li) + 1;
         const EllipsoidStyle previous{levels.back().primitiveScale, levels.back().alphaThreshold};
@@ -497,9 +497,9 @@ std::vector<EllipsoidLevel> buildEllipsoidHierarchy(
         report.level(levelIndex);
         EllipsoidLevel level;
         level.ellipsoids = bestClustering(leaves, targets[li], levelIndex, previous, rasterizer,
-                                          reference, options, threads, report);
+                                          reference, options, pool, report);
         level.clusterTarget = targets[li];
-        calibrateThreshold(level, previous.scale, rasterizer, reference, threads);
+        calibrateThreshold(level, previous.scale, rasterizer, reference, pool);
         bake(level.ellipsoids, level.primitiveScale, level.alphaThreshold,
              static_cast<std::uint32_t>(levelIndex));
         levels.push_back(std::move(level));

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "sylva/core/base/Check.h"
-#include "sylva/core/plantlod/PlantThreads.h"
+#include "sylva/core/base/WorkerPool.h"
 
 namespace sylva {
 
@@ -533,7 +533,8 @@ private:
     }
 
     void measure(std::vector<Candidate>& candidates) {
-        runOnThreads(static_cast<int>(candidates.size()), options_.threads, [&](int i) {
+        WorkerPool& pool = options_.pool != nullptr ? *options_.pool : WorkerPool::shared();
+        pool.run(static_cast<int>(candidates.size()), [&](int i) {
             Candidate& c = candidates[i];
             c.error = images_.measure(c.kind, c.a, c.b, nullptr, &c.footprint);
         });

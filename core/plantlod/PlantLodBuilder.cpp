@@ -4,11 +4,12 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <optional>
 
+#include "sylva/core/base/WorkerPool.h"
 #include "sylva/core/plantlod/AmbientOcclusion.h"
 #include "sylva/core/plantlod/EllipsoidHierarchy.h"
 #include "sylva/core/plantlod/ImageErrorMetric.h"
-#include "sylva/core/plantlod/PlantThreads.h"
 #include "sylva/core/plantlod/PrimitiveRasterizer.h"
 
 namespace sylva {
@@ -16,6 +17,21 @@ namespace sylva {
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+// The pool of PlantLodOptions::threads: the shared pool for <= 0, else a pool of that
+// size, its threads started once for the whole call.
+class BuildPool {
+public:
+    explicit BuildPool(int threads) {
+        if (threads > 0) {
+            own_.emplace(threads);
+        }
+    }
+    WorkerPool& get() { return own_ ? *own_ : WorkerPool::shared(); }
+
+private:
+    std::optional<WorkerPool> own_;
+};
 
 struct Bounds {
     glm::vec3 minimum{std::numeric_limits<float>::max()};
@@ -33,9 +49,9 @@ bool finite(const glm::vec3& v) {
 
 std::vector<std::vector<float>> renderReference(const PrimitiveRasterizer& rasterizer,
                                                 const PlantModel& model, PlantPart part, bool all,
-                                                int threads) {
+                                                WorkerPool& pool) {
     std::vector<std::vector<float>> images(rasterizer.viewCount());
-    runOnThreads(rasterizer.viewCount(), threads, [&](int view) {
+    pool.run(rasterizer.viewCount(), [&](int view) {
         RasterFrame frame = rasterizer.blankFrame();
         rasterizer.drawMesh(model, part, all, view, frame);
         images[view] = rasterizer.resolve(frame);
@@ -45,10 +61,10 @@ std::vector<std::vector<float>> renderReference(const PrimitiveRasterizer& raste
 
 double imageError(const PrimitiveRasterizer& rasterizer, std::span<const LodEllipsoid> ellipsoids,
                   std::span<const LodLine> lines, float lineScale,
-                  const std::vector<std::vector<float>>& reference, int threads) {
+                  const std::vector<std::vector<float>>& reference, WorkerPool& pool) {
     const int views = rasterizer.viewCount();
     std::vector<std::vector<double>> perView(views);
-    runOnThreads(views, threads, [&](int view) {
+    pool.run(views, [&](int view) {
         thread_local RasterFrame frame;
         rasterizer.clearFrame(frame);
         rasterizer.drawEllipsoids(ellipsoids, view, frame);
@@ -136,7 +152,7 @@ Status checkInput(const PlantModel& model, const PlantLodOptions& options,
 // log(scale) in [0.5, 2.5].
 float calibrateLineWidth(const PlantModel& model, const glm::vec3& barkColor,
                          const PrimitiveRasterizer& rasterizer,
-                         const std::vector<std::vector<float>>& branchReference, int threads) {
+                         const std::vector<std::vector<float>>& branchReference, WorkerPool& pool) {
     const LineSkeleton original(model.skeleton, barkColor);
     std::vector<LodLine> lines;
     for (const LineNode& node : original.nodes()) {
@@ -145,8 +161,8 @@ float calibrateLineWidth(const PlantModel& model, const glm::vec3& barkColor,
     float lo = std::log(0.5f), hi = std::log(2.5f);
     for (int i = 0; i < 10; ++i) {
         const float a = lo + (hi - lo) / 3.0f, b = hi - (hi - lo) / 3.0f;
-        const double ea = imageError(rasterizer, {}, lines, std::exp(a), branchReference, threads);
-        const double eb = imageError(rasterizer, {}, lines, std::exp(b), branchReference, threads);
+        const double ea = imageError(rasterizer, {}, lines, std::exp(a), branchReference, pool);
+        const double eb = imageError(rasterizer, {}, lines, std::exp(b), branchReference, pool);
         (ea <= eb ? hi : lo) = ea <= eb ? b : a;
     }
     return std::exp(0.5f * (lo + hi));
@@ -207,7 +223,8 @@ void addLines(const LineHierarchyResult& lineHierarchy, const PlantLodOptions& o
 // error against the full mesh; a plant of branches only gets one level.
 void addLevels(const std::vector<EllipsoidLevel>& levels, const std::vector<float>& levelError,
                const PrimitiveRasterizer& rasterizer,
-               const std::vector<std::vector<float>>& fullReference, int threads, PlantLod& lod) {
+               const std::vector<std::vector<float>>& fullReference, WorkerPool& pool,
+               PlantLod& lod) {
     for (std::size_t k = 0; k < levels.size(); ++k) {
         PlantLodLevel level;
         level.errorMinimum = levelError[k];
@@ -218,7 +235,7 @@ void addLevels(const std::vector<EllipsoidLevel>& levels, const std::vector<floa
         const std::vector<LodLine> lines = linesAt(lod, level.errorMinimum);
         level.lineCount = static_cast<std::uint32_t>(lines.size());
         level.imageError = static_cast<float>(
-            imageError(rasterizer, levels[k].ellipsoids, lines, 1.0f, fullReference, threads));
+            imageError(rasterizer, levels[k].ellipsoids, lines, 1.0f, fullReference, pool));
         lod.levels.push_back(level);
     }
     if (levels.empty()) {  // branches only: one level per distinct line error would do; keep one
@@ -226,7 +243,7 @@ void addLevels(const std::vector<EllipsoidLevel>& levels, const std::vector<floa
         const std::vector<LodLine> lines = linesAt(lod, 0.0f);
         level.lineCount = static_cast<std::uint32_t>(lines.size());
         level.imageError =
-            static_cast<float>(imageError(rasterizer, {}, lines, 1.0f, fullReference, threads));
+            static_cast<float>(imageError(rasterizer, {}, lines, 1.0f, fullReference, pool));
         lod.levels.push_back(level);
     }
 }
@@ -239,7 +256,8 @@ Result<PlantLod> buildPlantLod(const PlantModel& model, const PlantLodOptions& o
         return valid.error();
     }
     const Bounds bounds = modelBounds(model);
-    const int threads = resolveThreadCount(options.threads);
+    BuildPool buildPool(options.threads);
+    WorkerPool& pool = buildPool.get();
     std::mutex progressMutex;
     const PlantLodProgressCallback report = [&](const PlantLodProgress& p) {
         if (progress) {
@@ -257,15 +275,14 @@ Result<PlantLod> buildPlantLod(const PlantModel& model, const PlantLodOptions& o
     stage("import", 0.0);
     const PrimitiveRasterizer rasterizer(bounds.minimum, bounds.maximum, options.resolution,
                                          options.views, options.supersampling);
-    const auto leafReference = renderReference(rasterizer, model, PlantPart::Leaf, false, threads);
-    const auto branchReference =
-        renderReference(rasterizer, model, PlantPart::Branch, false, threads);
-    const auto fullReference = renderReference(rasterizer, model, PlantPart::Leaf, true, threads);
+    const auto leafReference = renderReference(rasterizer, model, PlantPart::Leaf, false, pool);
+    const auto branchReference = renderReference(rasterizer, model, PlantPart::Branch, false, pool);
+    const auto fullReference = renderReference(rasterizer, model, PlantPart::Leaf, true, pool);
     const std::vector<LodEllipsoid> leaves = importLeafEllipsoids(model, options.seed);
 
     EllipsoidHierarchyOptions hierarchyOptions;
     hierarchyOptions.restarts = std::max(options.restarts, 1);
-    hierarchyOptions.threads = threads;
+    hierarchyOptions.pool = &pool;
     hierarchyOptions.seed = options.seed;
     std::vector<EllipsoidLevel> levels = buildEllipsoidHierarchy(
         leaves, rasterizer, leafReference, hierarchyOptions, report, 0.02, 0.7);
@@ -275,11 +292,11 @@ Result<PlantLod> buildPlantLod(const PlantModel& model, const PlantLodOptions& o
     LineHierarchyOptions lineOptions = options.lines;
     lineOptions.seed = options.seed;
     lineOptions.widthScale = 1.0f;
-    lineOptions.threads = threads;
+    lineOptions.pool = &pool;
     if (!model.skeleton.empty() && model.triangleCount(PlantPart::Branch) > 0) {
         stage("line calibration", 0.7);
         lineOptions.widthScale =
-            calibrateLineWidth(model, barkColor, rasterizer, branchReference, threads);
+            calibrateLineWidth(model, barkColor, rasterizer, branchReference, pool);
     }
     LineHierarchyResult lineHierarchy;
     if (!model.skeleton.empty()) {
@@ -317,13 +334,13 @@ Result<PlantLod> buildPlantLod(const PlantModel& model, const PlantLodOptions& o
     });
 
     stage("level errors", 0.86);
-    addLevels(levels, levelError, rasterizer, fullReference, threads, lod);
+    addLevels(levels, levelError, rasterizer, fullReference, pool, lod);
     if (options.ambientOcclusionSamples > 0) {
         stage("ambient occlusion", 0.9);
         AmbientOcclusionOptions ao;
         ao.samples = options.ambientOcclusionSamples;
         ao.seed = options.seed;
-        ao.threads = threads;
+        ao.pool = &pool;
         computeAmbientOcclusion(model, lod, ao);
     }
 
@@ -336,10 +353,11 @@ double plantLodImageError(const PlantModel& model, const PlantLod& lod, float er
     const Bounds bounds = modelBounds(model);
     const PrimitiveRasterizer rasterizer(bounds.minimum, bounds.maximum, options.resolution,
                                          options.views, options.supersampling);
-    const int threads = resolveThreadCount(options.threads);
-    const auto reference = renderReference(rasterizer, model, PlantPart::Leaf, true, threads);
+    BuildPool buildPool(options.threads);
+    WorkerPool& pool = buildPool.get();
+    const auto reference = renderReference(rasterizer, model, PlantPart::Leaf, true, pool);
     return imageError(rasterizer, ellipsoidsAt(lod, error), linesAt(lod, error), 1.0f, reference,
-                      threads);
+                      pool);
 }
 
 double plantMeshImageError(const PlantModel& source, const PlantModel& candidate,
@@ -347,9 +365,10 @@ double plantMeshImageError(const PlantModel& source, const PlantModel& candidate
     const Bounds bounds = modelBounds(source);
     const PrimitiveRasterizer rasterizer(bounds.minimum, bounds.maximum, options.resolution,
                                          options.views, options.supersampling);
-    const int threads = resolveThreadCount(options.threads);
-    const auto reference = renderReference(rasterizer, source, PlantPart::Leaf, true, threads);
-    const auto drawn = renderReference(rasterizer, candidate, PlantPart::Leaf, true, threads);
+    BuildPool buildPool(options.threads);
+    WorkerPool& pool = buildPool.get();
+    const auto reference = renderReference(rasterizer, source, PlantPart::Leaf, true, pool);
+    const auto drawn = renderReference(rasterizer, candidate, PlantPart::Leaf, true, pool);
     std::vector<std::vector<double>> perView;
     for (int view = 0; view < rasterizer.viewCount(); ++view) {
         perView.push_back(

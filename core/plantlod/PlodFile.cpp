@@ -358,6 +358,11 @@ Result<BillboardCloud> readBillboards(std::span<const std::uint8_t> bytes,
         }
     }
     const PlodSectionInfo& atlases = *known.billboardAtlases;
+    if (known.billboardLevels->count > kMaxBillboardLevels) {
+        return fail(std::to_string(known.billboardLevels->count) +
+                    " billboard levels in section 'BBCL', at most " +
+                    std::to_string(kMaxBillboardLevels) + " are supported");
+    }
     const std::vector<plod::BillboardLevelEntry> entries =
         readRecords<plod::BillboardLevelEntry>(bytes, *known.billboardLevels);
     BillboardCloud cloud;

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <tuple>
 
-#include "sylva/core/base/ParallelFor.h"
+#include "sylva/core/base/WorkerPool.h"
 
 #if defined(__linux__)
 #include <sys/resource.h>
@@ -55,7 +55,7 @@ Scheduler::Scheduler(SchedulerOptions options) : options_(std::move(options)) {
     for (int i = 0; i < workers; ++i) {
         workers_.emplace_back([this] {
             lowerThreadPriority(options_.workerNiceIncrement);
-            disableParallelForOnThisThread();
+            WorkerPool::runSeriallyOnThisThread();
             workerLoop();
         });
     }

@@ -4,10 +4,8 @@
 #include <bit>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 #include "sylva/core/base/Check.h"
-#include "sylva/core/base/ParallelFor.h"
 
 namespace sylva {
 
@@ -165,50 +163,155 @@ void LodSelector::setFrustum(LodSelectionSettings& settings, double verticalFov,
     settings.sidePlanes[3] = glm::vec3(glm::normalize(glm::dvec3(0.0, -1.0, -ty)));  // top
 }
 
+LodSelector::LodSelector(WorkerPool* pool)
+    : pool_(pool != nullptr ? pool : &WorkerPool::shared()) {}
+
+Status LodSelector::checkSpecies(std::size_t index, std::size_t billboardLevels,
+                                 const std::string& name) {
+    if (index >= std::size_t(kMaxSpecies)) {
+        return Error{"plant '" + name + "': species " + std::to_string(index + 1) +
+                     " is one too many, the vegetation renderer draws at most " +
+                     std::to_string(kMaxSpecies) + " species"};
+    }
+    if (billboardLevels > std::size_t(kMaxBillboardLevels)) {
+        return Error{"plant '" + name + "': " + std::to_string(billboardLevels) +
+                     " billboard levels, the vegetation renderer draws at most " +
+                     std::to_string(kMaxBillboardLevels) + " per species"};
+    }
+    return Status::success();
+}
+
 namespace {
 
-// The per-instance decision of one frame.
-struct Decision {
-    std::uint32_t batch = 0, index = 0;
-    float error = 0.0f;
-    glm::vec3 originView{0.0f};
-    std::uint16_t key = 0;   // run key: species × slots + slot
-    std::uint16_t key2 = 0;  // second run during a handover (0xFFFF: none)
+constexpr int kMeshSlot = LodSelector::kBucketCount;
+constexpr int kBillboardSlot = LodSelector::kBucketCount + 1;
+constexpr std::uint16_t kNoKey = 0xFFFF;
+
+}  // namespace
+
+// Everything the passes of one select() read: its inputs and per-frame constants.
+struct LodSelector::Frame {
+    const std::vector<SpeciesLod>& species;
+    const Camera& camera;
+    const LodSelectionSettings& settings;
+    glm::dmat3 rotation;
+    glm::mat3 rotationFloat;
+    double errorPerMetre = 0.0;
+    float fadeUp = 1.0f, fadeDown = 1.0f;  // exp(±band / 2)
+    float near = 0.0f;
+    float maximumDistance = 0.0f;  // infinity when unlimited
+    glm::vec3 planes[4];
+    std::size_t total = 0;  // instances of the batches that passed the culling
+    int chunks = 1;
+
+    Frame(const std::vector<SpeciesLod>& s, const Camera& c, const LodSelectionSettings& set)
+        : species(s),
+          camera(c),
+          settings(set),
+          rotation(c.viewRotation()),
+          rotationFloat(rotation),
+          errorPerMetre(set.pixelAngle / std::max(set.quality, 1e-6)),
+          fadeUp(std::exp(float(0.5 * set.transitionBand))),
+          fadeDown(std::exp(-float(0.5 * set.transitionBand))),
+          near(float(set.near)),
+          maximumDistance(set.maximumDistance > 0 ? float(set.maximumDistance)
+                                                  : std::numeric_limits<float>::infinity()),
+          planes{set.sidePlanes[0], set.sidePlanes[1], set.sidePlanes[2], set.sidePlanes[3]} {}
 };
+
+namespace {
+
+// The run keys of one visible instance at tolerated error `error`: key (and key2 during a
+// handover: the mesh next to the finest primitives, or the neighbouring billboard level
+// within the fade band). `base` is the species' first key.
+void assignKeys(float error, const SpeciesLod& lod, const LodSelectionSettings& settings,
+                float fadeUp, float fadeDown, std::uint16_t base, std::uint16_t& key,
+                std::uint16_t& key2) {
+    key2 = kNoKey;
+    switch (settings.method) {
+        case VegetationMethod::Mesh:
+            key = std::uint16_t(base + kMeshSlot);
+            return;
+        case VegetationMethod::Lod: {
+            const bool mesh = settings.closeUpMesh && error < lod.meshError * fadeUp;
+            const bool primitives =
+                !settings.closeUpMesh || lod.meshError <= 0.0f || error >= lod.meshError * fadeDown;
+            if (primitives) {
+                key = std::uint16_t(base + fastBucketOf(error, float(LodSelector::kSmallestError)));
+                if (mesh) {
+                    key2 = std::uint16_t(base + kMeshSlot);
+                }
+            } else {
+                key = std::uint16_t(base + kMeshSlot);
+            }
+            return;
+        }
+        case VegetationMethod::Billboard: {
+            // The level whose interval holds the error, and its neighbour in the fade band.
+            const std::vector<float>& levels = lod.billboardError;
+            if (levels.empty()) {
+                key = std::uint16_t(base + kMeshSlot);
+                return;
+            }
+            int level = 0;
+            while (level + 1 < int(levels.size()) && error >= levels[level + 1]) {
+                ++level;
+            }
+            key = std::uint16_t(base + kBillboardSlot + level);
+            if (level + 1 < int(levels.size()) && error * fadeUp > levels[level + 1]) {
+                key2 = std::uint16_t(base + kBillboardSlot + level + 1);
+            } else if (level > 0 && error * fadeDown < levels[level]) {
+                key2 = std::uint16_t(base + kBillboardSlot + level - 1);
+            }
+            return;
+        }
+    }
+}
 
 }  // namespace
 
 void LodSelector::select(const std::vector<const InstanceBatch*>& allBatches,
                          const std::vector<SpeciesLod>& species, const Camera& camera,
                          const LodSelectionSettings& settings, LodSelection& out) {
+    SYLVA_CHECK(species.size() <= std::size_t(kMaxSpecies));
+    for (const SpeciesLod& lod : species) {
+        SYLVA_CHECK(lod.billboardError.size() <= std::size_t(kMaxBillboardLevels));
+    }
     out.instances.clear();
     out.runs.clear();
-    out.consideredInstances = 0;
     out.visibleInstances = 0;
     out.drawnEllipsoids = 0;
     out.drawnLines = 0;
 
-    // Slots per species: kBucketCount primitive buckets, then the mesh, then the
-    // billboard levels (at most kBucketCount - 2 of them).
-    constexpr int kSlots = kBucketCount + 1 + 16;
-    constexpr int kMeshSlot = kBucketCount;
-    constexpr int kBillboardSlot = kBucketCount + 1;
-    SYLVA_CHECK(species.size() * kSlots < 0xFFFF);
+    Frame frame(species, camera, settings);
+    out.consideredInstances = cullBatches(allBatches, frame);
+    frame.total = batchStart_.back();
+    frame.chunks =
+        std::max(1, std::min<int>(pool_->threadCount() * 4, int(frame.total / 4096) + 1));
 
-    const glm::dmat3 rotation = camera.viewRotation();
-    const glm::mat3 rotationFloat(rotation);
-    const double errorPerMetre = settings.pixelAngle / std::max(settings.quality, 1e-6);
-    const float halfBand = float(0.5 * settings.transitionBand);
-    const float fadeUp = std::exp(halfBand), fadeDown = std::exp(-halfBand);
+    // Pass 1 (parallel over chunks of instances): cull, error, run keys.
+    decided_.resize(std::size_t(frame.chunks));
+    for (std::vector<Decision>& decisions : decided_) {
+        decisions.clear();
+    }
+    pool_->run(frame.chunks, [&](int chunk) { decideChunk(chunk, frame); });
 
-    // Per batch (tile): drop those whose bounding sphere is outside the frustum or too
-    // far for any of its plants to cover minimumPixels.
-    std::vector<const InstanceBatch*> batches;
-    std::size_t considered = 0;
+    sortRuns(frame, out);
+    writeInstances(frame, out);
+}
+
+// Per batch (tile): keeps those whose bounding sphere is inside the frustum and near
+// enough for one of its plants to cover minimumPixels. Returns the instances considered.
+std::size_t LodSelector::cullBatches(const std::vector<const InstanceBatch*>& allBatches,
+                                     const Frame& frame) {
+    const LodSelectionSettings& settings = frame.settings;
+    batches_.clear();
+    batchStart_.clear();
+    std::size_t considered = 0, total = 0;
     for (const InstanceBatch* batch : allBatches) {
         considered += batch->instances.size();
-        const glm::vec3 center(rotation *
-                               (batch->origin - camera.position + glm::dvec3(batch->boundsCenter)));
+        const glm::vec3 center(frame.rotation * (batch->origin - frame.camera.position +
+                                                 glm::dvec3(batch->boundsCenter)));
         const float r = batch->boundsRadius;
         bool inside = center.z <= r - float(settings.near);
         for (int p = 0; p < 4 && inside; ++p) {
@@ -216,161 +319,102 @@ void LodSelector::select(const std::vector<const InstanceBatch*>& allBatches,
         }
         const float nearest = std::max(glm::length(center) - r, 0.0f);
         const bool large = 2.0f * batch->largestInstanceRadius >=
-                           float(settings.minimumPixels * nearest * errorPerMetre);
+                           float(settings.minimumPixels * nearest * frame.errorPerMetre);
         const bool withinDistance =
             settings.maximumDistance <= 0.0 || nearest <= settings.maximumDistance;
         if (inside && large && withinDistance && !batch->instances.empty()) {
-            batches.push_back(batch);
+            batches_.push_back(batch);
+            batchStart_.push_back(total);
+            total += batch->instances.size();
         }
     }
+    batchStart_.push_back(total);
+    return considered;
+}
 
-    // Pass 1 (parallel over chunks of batches): cull, error, run keys.
-    std::size_t total = 0;
-    std::vector<std::size_t> batchStart(batches.size() + 1, 0);
-    for (std::size_t b = 0; b < batches.size(); ++b) {
-        batchStart[b] = total;
-        total += batches[b]->instances.size();
-    }
-    batchStart[batches.size()] = total;
-    out.consideredInstances = considered;
-
-    const int chunks = std::max(
-        1, std::min<int>(int(std::thread::hardware_concurrency()) * 4, int(total / 4096) + 1));
-    // Scratch kept between frames (per calling thread): fresh buffers would be paged in
-    // again every frame. (The lambdas below run on other threads: they must see this
-    // thread's buffers through the references, never name the thread_local itself.)
-    thread_local std::vector<std::vector<Decision>> decidedScratch;
-    std::vector<std::vector<Decision>>& decided = decidedScratch;
-    decided.resize(chunks);
-    for (std::vector<Decision>& decisions : decided) {
-        decisions.clear();
-    }
-    const float near = float(settings.near);
-    const float smallestError = float(kSmallestError);
-    const glm::vec3 planes[4] = {settings.sidePlanes[0], settings.sidePlanes[1],
-                                 settings.sidePlanes[2], settings.sidePlanes[3]};
-    const float maximumDistance = settings.maximumDistance > 0
-                                      ? float(settings.maximumDistance)
-                                      : std::numeric_limits<float>::infinity();
-    parallelFor(0, chunks, [&](int chunk) {
-        const std::size_t first = total * chunk / chunks, last = total * (chunk + 1) / chunks;
-        std::vector<Decision>& decisions = decided[chunk];
-        decisions.reserve((last - first) / 4 + 16);
-        std::size_t b =
-            std::upper_bound(batchStart.begin(), batchStart.end(), first) - batchStart.begin() - 1;
-        std::size_t i = first;
-        while (i < last) {
-            while (batchStart[b + 1] <= i) {
-                ++b;
-            }
-            const InstanceBatch& batch = *batches[b];
-            const glm::vec3 originView(rotation * (batch.origin - camera.position));
-            const std::size_t end = std::min(last, batchStart[b + 1]);
-            for (std::size_t k = i - batchStart[b]; k < end - batchStart[b]; ++k) {
-                const glm::vec4 sphere = batch.spheres[k];
-                const glm::vec3 center = originView + rotationFloat * glm::vec3(sphere);
-                const float r = sphere.w;
-                if (center.z > r - near || glm::dot(planes[0], center) < -r ||
-                    glm::dot(planes[1], center) < -r || glm::dot(planes[2], center) < -r ||
-                    glm::dot(planes[3], center) < -r) {
-                    continue;
-                }
-                const float distance = glm::length(center);
-                const float error = float(distance * errorPerMetre);
-                if (distance > maximumDistance ||
-                    2.0f * r < float(settings.minimumPixels) * error) {
-                    continue;
-                }
-                const std::uint32_t speciesIndex = batch.instances[k].species;
-                const SpeciesLod& lod = species[speciesIndex];
-                Decision d;
-                d.batch = std::uint32_t(b);
-                d.index = std::uint32_t(k);
-                d.error = error;
-                d.originView = originView;
-                d.key2 = 0xFFFF;
-                const std::uint16_t base = std::uint16_t(speciesIndex * kSlots);
-                switch (settings.method) {
-                    case VegetationMethod::Mesh:
-                        d.key = std::uint16_t(base + kMeshSlot);
-                        break;
-                    case VegetationMethod::Lod: {
-                        const bool mesh = settings.closeUpMesh && error < lod.meshError * fadeUp;
-                        const bool primitives = !settings.closeUpMesh || lod.meshError <= 0.0f ||
-                                                error >= lod.meshError * fadeDown;
-                        if (primitives) {
-                            d.key = std::uint16_t(base + fastBucketOf(error, smallestError));
-                            if (mesh) {
-                                d.key2 = std::uint16_t(base + kMeshSlot);
-                            }
-                        } else {
-                            d.key = std::uint16_t(base + kMeshSlot);
-                        }
-                        break;
-                    }
-                    case VegetationMethod::Billboard: {
-                        // The level whose interval holds the error, and its neighbour in
-                        // the fade band.
-                        const std::vector<float>& levels = lod.billboardError;
-                        if (levels.empty()) {
-                            d.key = std::uint16_t(base + kMeshSlot);
-                            break;
-                        }
-                        int level = 0;
-                        while (level + 1 < int(levels.size()) && error >= levels[level + 1]) {
-                            ++level;
-                        }
-                        d.key = std::uint16_t(base + kBillboardSlot + level);
-                        if (level + 1 < int(levels.size()) && error * fadeUp > levels[level + 1]) {
-                            d.key2 = std::uint16_t(base + kBillboardSlot + level + 1);
-                        } else if (level > 0 && error * fadeDown < levels[level]) {
-                            d.key2 = std::uint16_t(base + kBillboardSlot + level - 1);
-                        }
-                        break;
-                    }
-                }
-                decisions.push_back(d);
-            }
-            i = end;
+// Pass 1 over instances [total × chunk / chunks, total × (chunk + 1) / chunks) of the
+// kept batches: frustum, near and size culling per instance, then the run keys.
+void LodSelector::decideChunk(int chunk, const Frame& frame) {
+    const std::size_t first = frame.total * std::size_t(chunk) / std::size_t(frame.chunks);
+    const std::size_t last = frame.total * std::size_t(chunk + 1) / std::size_t(frame.chunks);
+    std::vector<Decision>& decisions = decided_[std::size_t(chunk)];
+    decisions.reserve((last - first) / 4 + 16);
+    const float minimumPixels = float(frame.settings.minimumPixels);
+    const glm::vec3* planes = frame.planes;
+    std::size_t b =
+        std::upper_bound(batchStart_.begin(), batchStart_.end(), first) - batchStart_.begin() - 1;
+    for (std::size_t i = first; i < last;) {
+        while (batchStart_[b + 1] <= i) {
+            ++b;
         }
-    });
+        const InstanceBatch& batch = *batches_[b];
+        const glm::vec3 originView(frame.rotation * (batch.origin - frame.camera.position));
+        const std::size_t end = std::min(last, batchStart_[b + 1]);
+        for (std::size_t k = i - batchStart_[b]; k < end - batchStart_[b]; ++k) {
+            const glm::vec4 sphere = batch.spheres[k];
+            const glm::vec3 center = originView + frame.rotationFloat * glm::vec3(sphere);
+            const float r = sphere.w;
+            if (center.z > r - frame.near || glm::dot(planes[0], center) < -r ||
+                glm::dot(planes[1], center) < -r || glm::dot(planes[2], center) < -r ||
+                glm::dot(planes[3], center) < -r) {
+                continue;
+            }
+            const float distance = glm::length(center);
+            const float error = float(distance * frame.errorPerMetre);
+            if (distance > frame.maximumDistance || 2.0f * r < minimumPixels * error) {
+                continue;
+            }
+            const std::uint32_t speciesIndex = batch.instances[k].species;
+            Decision d;
+            d.batch = std::uint32_t(b);
+            d.index = std::uint32_t(k);
+            d.error = error;
+            d.originView = originView;
+            assignKeys(error, frame.species[speciesIndex], frame.settings, frame.fadeUp,
+                       frame.fadeDown, std::uint16_t(speciesIndex * kSlotsPerSpecies), d.key,
+                       d.key2);
+            decisions.push_back(d);
+        }
+        i = end;
+    }
+}
 
-    // Counting sort by run key (two entries for instances in a handover band).
-    const std::size_t keys = species.size() * kSlots;
-    std::vector<std::uint32_t> counts(keys + 1, 0);
+// Counting sort by run key (two entries for instances in a handover band): the first
+// instance of every key in start_, one DrawRun per non-empty key.
+void LodSelector::sortRuns(const Frame& frame, LodSelection& out) {
+    const std::size_t keys = frame.species.size() * kSlotsPerSpecies;
+    start_.assign(keys + 1, 0);  // counts of key k in start_[k + 1] first
     std::size_t visible = 0;
-    for (const std::vector<Decision>& decisions : decided) {
+    for (const std::vector<Decision>& decisions : decided_) {
         visible += decisions.size();
         for (const Decision& d : decisions) {
-            ++counts[d.key + 1];
-            if (d.key2 != 0xFFFF) {
-                ++counts[d.key2 + 1];
+            ++start_[d.key + 1];
+            if (d.key2 != kNoKey) {
+                ++start_[d.key2 + 1];
             }
         }
     }
     out.visibleInstances = visible;
-    std::vector<std::uint32_t> start(keys + 1, 0);
     for (std::size_t k = 0; k < keys; ++k) {
-        start[k + 1] = start[k] + counts[k + 1];
+        start_[k + 1] += start_[k];
     }
-    const std::size_t drawn = start[keys];
-    out.instances.resize(drawn);
+    out.instances.resize(start_[keys]);
     for (std::size_t k = 0; k < keys; ++k) {
-        const std::uint32_t count = start[k + 1] - start[k];
+        const std::uint32_t count = start_[k + 1] - start_[k];
         if (count == 0) {
             continue;
         }
         DrawRun run;
-        run.species = std::uint32_t(k / kSlots);
-        const int slot = int(k % kSlots);
-        run.firstInstance = start[k];
+        run.species = std::uint32_t(k / kSlotsPerSpecies);
+        const int slot = int(k % kSlotsPerSpecies);
+        run.firstInstance = start_[k];
         run.instanceCount = count;
-        const SpeciesLod& lod = species[run.species];
+        const SpeciesLod& lod = frame.species[run.species];
         if (slot < kBucketCount) {
             run.kind = DrawRun::Kind::Primitives;
             run.bucket = std::uint32_t(slot);
-            run.ellipsoids = lod.ellipsoidPrefix[slot];
-            run.lines = lod.linePrefix[slot];
+            run.ellipsoids = lod.ellipsoidPrefix[std::size_t(slot)];
+            run.lines = lod.linePrefix[std::size_t(slot)];
             out.drawnEllipsoids += std::size_t(run.ellipsoids) * count;
             out.drawnLines += std::size_t(run.lines) * count;
         } else if (slot == kMeshSlot) {
@@ -381,37 +425,39 @@ void LodSelector::select(const std::vector<const InstanceBatch*>& allBatches,
         }
         out.runs.push_back(run);
     }
+}
 
-    // Pass 2 (parallel): write each decision's view transform into its slots. Each chunk
-    // claims its slots serially first (cheap), then fills them in parallel.
-    thread_local std::vector<std::vector<std::uint32_t>> slotsScratch;
-    std::vector<std::vector<std::uint32_t>>& slots = slotsScratch;
-    slots.resize(chunks);
-    std::vector<std::uint32_t> cursor(start.begin(), start.end() - 1);
-    for (int chunk = 0; chunk < chunks; ++chunk) {
-        std::vector<std::uint32_t>& s = slots[chunk];
+// Pass 2: each decision's view transform into its slots. The slots are claimed serially
+// in chunk order (cheap; it keeps every run in instance order), then filled in parallel.
+void LodSelector::writeInstances(const Frame& frame, LodSelection& out) {
+    slots_.resize(std::size_t(frame.chunks));
+    std::vector<std::uint32_t>& cursor = start_;  // start_ is not needed after this
+    for (int chunk = 0; chunk < frame.chunks; ++chunk) {
+        std::vector<std::uint32_t>& s = slots_[std::size_t(chunk)];
         s.clear();
-        s.reserve(2 * decided[chunk].size());
-        for (const Decision& d : decided[chunk]) {
+        s.reserve(2 * decided_[std::size_t(chunk)].size());
+        for (const Decision& d : decided_[std::size_t(chunk)]) {
             s.push_back(cursor[d.key]++);
-            s.push_back(d.key2 != 0xFFFF ? cursor[d.key2]++ : 0xFFFFFFFFu);
+            s.push_back(d.key2 != kNoKey ? cursor[d.key2]++ : 0xFFFFFFFFu);
         }
     }
-    parallelFor(0, chunks, [&](int chunk) {
-        const std::vector<Decision>& decisions = decided[chunk];
+    const glm::mat3& rotation = frame.rotationFloat;
+    pool_->run(frame.chunks, [&](int chunk) {
+        const std::vector<Decision>& decisions = decided_[std::size_t(chunk)];
+        const std::vector<std::uint32_t>& s = slots_[std::size_t(chunk)];
         for (std::size_t n = 0; n < decisions.size(); ++n) {
             const Decision& d = decisions[n];
-            const InstanceBatch::Instance& instance = batches[d.batch]->instances[d.index];
+            const InstanceBatch::Instance& instance = batches_[d.batch]->instances[d.index];
             DrawInstance draw;
-            draw.axisX = glm::vec4(rotationFloat * instance.axes[0], d.error);
-            draw.axisY = glm::vec4(rotationFloat * instance.axes[1],
-                                   float(instance.hash >> 8) / 16777216.0f);
-            draw.axisZ = glm::vec4(rotationFloat * instance.axes[2], 0.0f);
-            draw.origin = glm::vec4(d.originView + rotationFloat * instance.base, 1.0f);
+            draw.axisX = glm::vec4(rotation * instance.axes[0], d.error);
+            draw.axisY =
+                glm::vec4(rotation * instance.axes[1], float(instance.hash >> 8) / 16777216.0f);
+            draw.axisZ = glm::vec4(rotation * instance.axes[2], 0.0f);
+            draw.origin = glm::vec4(d.originView + rotation * instance.base, 1.0f);
             draw.tint = glm::vec4(instance.tint, 1.0f);
-            out.instances[slots[chunk][2 * n]] = draw;
-            if (slots[chunk][2 * n + 1] != 0xFFFFFFFFu) {
-                out.instances[slots[chunk][2 * n + 1]] = draw;
+            out.instances[s[2 * n]] = draw;
+            if (s[2 * n + 1] != 0xFFFFFFFFu) {
+                out.instances[s[2 * n + 1]] = draw;
             }
         }
     });

@@ -208,8 +208,11 @@ Result<std::vector<VegetationStreamLayer>> SceneRenderer::vegetationLayers(
                 if (!asset) {
                     return asset.error();
                 }
-                const std::uint32_t index = vegetation_->addSpecies(asset.value());
-                found = speciesOfModel_.emplace(model->contentHash(), index).first;
+                Result<std::uint32_t> index = vegetation_->addSpecies(asset.value());
+                if (!index) {
+                    return index.error();
+                }
+                found = speciesOfModel_.emplace(model->contentHash(), index.value()).first;
             }
             layer.species.push_back(int(found->second));
         }

@@ -189,9 +189,14 @@ const std::shared_ptr<const PlantAsset>& VegetationRenderer::asset(std::uint32_t
     return species_[species]->asset;
 }
 
-std::uint32_t VegetationRenderer::addSpecies(std::shared_ptr<const PlantAsset> asset,
-                                             double transitionBand) {
+Result<std::uint32_t> VegetationRenderer::addSpecies(std::shared_ptr<const PlantAsset> asset,
+                                                     double transitionBand) {
     SYLVA_CHECK(asset != nullptr);
+    if (Status fits =
+            LodSelector::checkSpecies(species_.size(), billboardLevels(*asset).size(), asset->name);
+        !fits) {
+        return fits.error();
+    }
     auto species = std::make_unique<Species>();
     species->asset = asset;
     species->firstEllipsoid = ellipsoidCount_;
@@ -279,7 +284,7 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches,
                             double(pixelsWide) / std::max(pixelsHigh, 1));
 
     const auto selectStart = std::chrono::steady_clock::now();
-    LodSelector::select(batches, lods_, camera, selection, selection_);
+    selector_.select(batches, lods_, camera, selection, selection_);
     const auto uploadStart = std::chrono::steady_clock::now();
     statistics_.selectSeconds = std::chrono::duration<double>(uploadStart - selectStart).count();
     statistics_.consideredInstances = selection_.consideredInstances;

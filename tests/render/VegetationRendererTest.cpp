@@ -138,6 +138,27 @@ std::shared_ptr<PlantAsset> singleEllipsoid(glm::vec3 center, glm::vec3 radii, g
 void expectAnalyticEllipsoidDepth(int width, int height, double north, bool quadPass,
                                   bool wall = false);
 
+// A plant with more billboard levels than the selector's run keys hold is refused with
+// its name and the limit, before anything is uploaded; the renderer stays usable.
+TEST_F(VegetationRendererTest, SpeciesBeyondTheBillboardLevelLimitAreRefused) {
+    Result<std::unique_ptr<VegetationRenderer>> created =
+        VegetationRenderer::create(ShaderLibrary());
+    ASSERT_TRUE(created) << created.error().message;
+    VegetationRenderer& renderer = *created.value();
+    auto asset = singleEllipsoid(glm::vec3(0, 0, 1.5f), glm::vec3(1.0f), glm::mat3(1.0f));
+    asset->lod.billboards.levels.resize(kMaxBillboardLevels + 1);
+    const Result<std::uint32_t> refused = renderer.addSpecies(asset);
+    ASSERT_FALSE(refused);
+    EXPECT_EQ(refused.error().message,
+              "plant 'ellipsoid': 17 billboard levels, the vegetation renderer draws at most 16 "
+              "per species");
+    EXPECT_EQ(renderer.speciesCount(), 0u);
+    const Result<std::uint32_t> added = renderer.addSpecies(
+        singleEllipsoid(glm::vec3(0, 0, 1.5f), glm::vec3(1.0f), glm::mat3(1.0f)));
+    ASSERT_TRUE(added) << added.error().message;
+    EXPECT_EQ(added.value(), 0u);
+}
+
 TEST_F(VegetationRendererTest, RayCastEllipsoidDepthEqualsTheAnalyticIntersection) {
     expectAnalyticEllipsoidDepth(480, 360, 25.0, false);
 }
@@ -159,8 +180,10 @@ void expectAnalyticEllipsoidDepth(int width, int height, double north, bool quad
     // An oblate, rotated ellipsoid (2 × 1.2 × 0.15 m) 1.5 m above the base.
     const glm::mat3 axes =
         glm::mat3(glm::rotate(glm::mat4(1.0f), 0.6f, glm::normalize(glm::vec3(1, 2, 3))));
-    const std::uint32_t species = renderer.addSpecies(
+    const Result<std::uint32_t> added = renderer.addSpecies(
         singleEllipsoid(glm::vec3(0, 0, 1.5f), glm::vec3(2.0f, 1.2f, 0.15f), axes));
+    ASSERT_TRUE(added) << added.error().message;
+    const std::uint32_t species = added.value();
     InstancePlacement p = VegetationRendererTest::placement(north, 0.0, 0.4f, 1.3f);
     p.species = species;
     const InstanceBatch batch = LodSelector::makeBatch(p.baseEcef, {p}, renderer.speciesLods());

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "sylva/core/base/Hash.h"
-#include "sylva/core/base/ParallelFor.h"
+#include "sylva/core/base/WorkerPool.h"
 #include "sylva/core/geo/Ellipsoid.h"
 
 namespace sylva {
@@ -95,7 +95,8 @@ Result<TilePointer> NoiseSource::produce(const TileKey& key, TileProvider& provi
     const int begin = -format.border;
     const int end = format.size + format.border;
     // Rows are independent: synthesise them in parallel (noise dominates tile cost).
-    parallelFor(begin, end, [&](int iy) {
+    WorkerPool::shared().run(end - begin, [&](int rowIndex) {
+        const int iy = begin + rowIndex;
         const double latitude = tile->texelLatitude(iy);
         const double cosLat = std::cos(latitude);
         const double sinLat = std::sin(latitude);

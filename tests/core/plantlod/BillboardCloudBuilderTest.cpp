@@ -135,6 +135,12 @@ TEST(BillboardCloudBuilder, BadOptionsAreReported) {
     ASSERT_FALSE(cloud);
     EXPECT_EQ(cloud.error().message,
               "billboard cloud of 'bush': epsilons must lie in (0, 1) of the bounding radius");
+    // More levels than the vegetation renderer's run keys hold (kMaxBillboardLevels).
+    options.epsilons.assign(kMaxBillboardLevels + 1, 0.5f);
+    cloud = BillboardCloudBuilder::build(tree("bush", 100), options);
+    ASSERT_FALSE(cloud);
+    EXPECT_EQ(cloud.error().message,
+              "billboard cloud of 'bush': 17 epsilons, at most 16 levels are supported");
 }
 
 }  // namespace

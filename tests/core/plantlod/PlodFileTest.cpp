@@ -161,6 +161,30 @@ TEST(PlodFile, BillboardCloudsRoundTripBitExactly) {
     EXPECT_TRUE(plain->billboards.levels.empty());
 }
 
+// The vegetation renderer's run keys hold kMaxBillboardLevels levels per species: a file
+// with that many reads, one with more fails naming the file and the limit (instead of
+// reaching the renderer and overflowing its keys).
+TEST(PlodFile, BillboardLevelsAreLimited) {
+    ASSERT_EQ(kMaxBillboardLevels, 16u);
+    PlantLod lod = sampleLodWithBillboards();
+    while (lod.billboards.levels.size() < kMaxBillboardLevels) {
+        lod.billboards.levels.push_back(lod.billboards.levels.back());
+    }
+    const std::filesystem::path path = temporaryPath("sixteen");
+    ASSERT_TRUE(writePlodFile(lod, path.string()).ok());
+    Result<PlantLod> read = readPlodFile(path.string());
+    ASSERT_TRUE(read.ok()) << read.error().message;
+    EXPECT_EQ(read->billboards.levels.size(), 16u);
+
+    lod.billboards.levels.push_back(lod.billboards.levels.back());
+    ASSERT_TRUE(writePlodFile(lod, path.string()).ok());
+    Result<PlantLod> tooMany = readPlodFile(path.string());
+    ASSERT_FALSE(tooMany.ok());
+    EXPECT_EQ(tooMany.error().message,
+              path.string() + ": 17 billboard levels in section 'BBCL', at most 16 are supported");
+    std::filesystem::remove(path);
+}
+
 // Re-seals a modified file so the checksum passes and the intended check fires.
 void reseal(std::vector<std::uint8_t>& bytes) {
     std::uint64_t hash = 0xcbf29ce484222325ull;

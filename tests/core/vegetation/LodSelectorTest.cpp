@@ -1,9 +1,12 @@
 // LodSelector (issue 7): bucket prefixes hold every primitive an error in the bucket may
 // draw; culling by frustum, near plane and screen size; the mesh handover lists an
-// instance for both the mesh and the primitives; the drawn transform is the instance's.
+// instance for both the mesh and the primitives; the drawn transform is the instance's;
+// the output is the same for any thread count and frame after frame; billboard levels
+// and species are limited to what the 16-bit run keys hold.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include "sylva/core/geo/Ellipsoid.h"
@@ -109,6 +112,7 @@ protected:
     std::vector<SpeciesLod> lods_;
     Camera camera_;
     LodSelectionSettings settings_;
+    LodSelector selector_;
 };
 
 TEST_F(LodSelectorScene, CullsBehindOutsideAndTooSmall) {
@@ -121,7 +125,7 @@ TEST_F(LodSelectorScene, CullsBehindOutsideAndTooSmall) {
     };
     const InstanceBatch batch = LodSelector::makeBatch(camera_.position, placements, lods_);
     LodSelection out;
-    LodSelector::select({&batch}, lods_, camera_, settings_, out);
+    selector_.select({&batch}, lods_, camera_, settings_, out);
     EXPECT_EQ(out.consideredInstances, 5u);
     EXPECT_EQ(out.visibleInstances, 2u);
 }
@@ -136,11 +140,11 @@ TEST_F(LodSelectorScene, WholeBatchesAreCulledByTheirBounds) {
     const InstanceBatch front = LodSelector::makeBatch(ahead[0].baseEcef, ahead, lods_);
     EXPECT_GT(back.boundsRadius, 30.0f);
     LodSelection out;
-    LodSelector::select({&back, &front}, lods_, camera_, settings_, out);
+    selector_.select({&back, &front}, lods_, camera_, settings_, out);
     EXPECT_EQ(out.consideredInstances, 200u);
     EXPECT_EQ(out.visibleInstances, 100u);
     settings_.maximumDistance = 20.0;
-    LodSelector::select({&back, &front}, lods_, camera_, settings_, out);
+    selector_.select({&back, &front}, lods_, camera_, settings_, out);
     EXPECT_EQ(out.visibleInstances, 0u);
 }
 
@@ -151,7 +155,7 @@ TEST_F(LodSelectorScene, RunsFollowTheErrorAndTheMeshHandover) {
                                                  at(meshDistance * 3, 0), at(meshDistance * 20, 0)};
     const InstanceBatch batch = LodSelector::makeBatch(camera_.position, placements, lods_);
     LodSelection out;
-    LodSelector::select({&batch}, lods_, camera_, settings_, out);
+    selector_.select({&batch}, lods_, camera_, settings_, out);
     EXPECT_EQ(out.visibleInstances, 4u);
     // The instance at the mesh error is drawn twice (mesh and primitives, faded).
     EXPECT_EQ(out.instances.size(), 5u);
@@ -173,10 +177,10 @@ TEST_F(LodSelectorScene, RunsFollowTheErrorAndTheMeshHandover) {
     EXPECT_EQ(primitives, 3u);
     // Without the handover everything is primitives; the Mesh method only meshes.
     settings_.closeUpMesh = false;
-    LodSelector::select({&batch}, lods_, camera_, settings_, out);
+    selector_.select({&batch}, lods_, camera_, settings_, out);
     EXPECT_EQ(out.instances.size(), 4u);
     settings_.method = VegetationMethod::Mesh;
-    LodSelector::select({&batch}, lods_, camera_, settings_, out);
+    selector_.select({&batch}, lods_, camera_, settings_, out);
     ASSERT_EQ(out.runs.size(), 1u);
     EXPECT_EQ(out.runs[0].kind, DrawRun::Kind::Mesh);
 }
@@ -192,7 +196,7 @@ TEST_F(LodSelectorScene, RunBucketsMatchTheExactBucketAwayFromBoundaries) {
     settings_.closeUpMesh = false;
     settings_.minimumPixels = 0.0;
     LodSelection out;
-    LodSelector::select({&batch}, lods_, camera_, settings_, out);
+    selector_.select({&batch}, lods_, camera_, settings_, out);
     EXPECT_GT(out.visibleInstances, 350u);
     std::size_t checked = 0;
     for (const DrawRun& run : out.runs) {
@@ -221,7 +225,7 @@ TEST_F(LodSelectorScene, DrawnTransformPlacesTheModelInViewSpace) {
         LodSelector::makeBatch(p.baseEcef + glm::dvec3(1000, -500, 30), {p}, lods_);
     settings_.closeUpMesh = false;
     LodSelection out;
-    LodSelector::select({&batch}, lods_, camera_, settings_, out);
+    selector_.select({&batch}, lods_, camera_, settings_, out);
     ASSERT_EQ(out.instances.size(), 1u);
     const DrawInstance& d = out.instances[0];
     // Model point (0, 1, 2) m: heading 90° puts model +Y to the east; scale 2.
@@ -234,6 +238,113 @@ TEST_F(LodSelectorScene, DrawnTransformPlacesTheModelInViewSpace) {
     EXPECT_NEAR(drawn.x, expectedView.x, 2e-3);
     EXPECT_NEAR(drawn.y, expectedView.y, 2e-3);
     EXPECT_NEAR(drawn.z, expectedView.z, 2e-3);
+}
+
+// Bytewise equal selections (instances and runs in the same order).
+void expectSameSelection(const LodSelection& a, const LodSelection& b) {
+    EXPECT_EQ(a.consideredInstances, b.consideredInstances);
+    EXPECT_EQ(a.visibleInstances, b.visibleInstances);
+    EXPECT_EQ(a.drawnEllipsoids, b.drawnEllipsoids);
+    ASSERT_EQ(a.instances.size(), b.instances.size());
+    EXPECT_EQ(std::memcmp(a.instances.data(), b.instances.data(),
+                          a.instances.size() * sizeof(DrawInstance)),
+              0);
+    ASSERT_EQ(a.runs.size(), b.runs.size());
+    for (std::size_t r = 0; r < a.runs.size(); ++r) {
+        EXPECT_EQ(a.runs[r].kind, b.runs[r].kind);
+        EXPECT_EQ(a.runs[r].bucket, b.runs[r].bucket);
+        EXPECT_EQ(a.runs[r].firstInstance, b.runs[r].firstInstance);
+        EXPECT_EQ(a.runs[r].instanceCount, b.runs[r].instanceCount);
+    }
+}
+
+// 30,000 trees in three batches (several chunks per pass): one thread, three threads and
+// a selector reused after another view give the same bytes.
+TEST_F(LodSelectorScene, SelectionIsIndependentOfThreadsAndFrames) {
+    std::vector<InstanceBatch> batches;
+    for (int b = 0; b < 3; ++b) {
+        std::vector<InstancePlacement> placements;
+        for (int i = 0; i < 10000; ++i) {
+            placements.push_back(at(5.0 + (i % 100) * 8.0 + b * 800.0, (i / 100) * 8.0 - 400.0));
+        }
+        batches.push_back(LodSelector::makeBatch(placements[0].baseEcef, placements, lods_));
+    }
+    const std::vector<const InstanceBatch*> pointers = {&batches[0], &batches[1], &batches[2]};
+    WorkerPool one(1), three(3);
+    LodSelector serial(&one), parallel(&three);
+    LodSelection a, b, c;
+    serial.select(pointers, lods_, camera_, settings_, a);
+    EXPECT_GT(a.visibleInstances, 5000u);
+    EXPECT_GT(a.runs.size(), 5u);
+    parallel.select(pointers, lods_, camera_, settings_, b);
+    expectSameSelection(a, b);
+    Camera turned = camera_;
+    turned.axes = Camera::axesFromAngles(camera_.geodetic, 2.0, -0.2, 0.0);
+    parallel.select(pointers, lods_, turned, settings_, c);
+    parallel.select(pointers, lods_, camera_, settings_, c);
+    expectSameSelection(a, c);
+}
+
+TEST(LodSelector, SpeciesAndBillboardLevelsAreChecked) {
+    EXPECT_EQ(LodSelector::kMaxBillboardLevels, 16);
+    EXPECT_LT(LodSelector::kMaxSpecies * LodSelector::kSlotsPerSpecies, 0xFFFF);
+    EXPECT_TRUE(LodSelector::checkSpecies(0, 16, "oak"));
+    EXPECT_TRUE(LodSelector::checkSpecies(LodSelector::kMaxSpecies - 1, 0, "oak"));
+    const Status levels = LodSelector::checkSpecies(0, 17, "oak");
+    ASSERT_FALSE(levels);
+    EXPECT_EQ(levels.error().message,
+              "plant 'oak': 17 billboard levels, the vegetation renderer draws at most 16 per "
+              "species");
+    const Status species = LodSelector::checkSpecies(LodSelector::kMaxSpecies, 0, "birch");
+    ASSERT_FALSE(species);
+    EXPECT_EQ(species.error().message,
+              "plant 'birch': species " + std::to_string(LodSelector::kMaxSpecies + 1) +
+                  " is one too many, the vegetation renderer draws at most " +
+                  std::to_string(LodSelector::kMaxSpecies) + " species");
+}
+
+// Two species with 16 billboard levels each: a tree far enough for the last level lands
+// in its own species' slot for it, not in the next species' keys.
+TEST_F(LodSelectorScene, SixteenBillboardLevelsKeepTheirKeys) {
+    lods_.push_back(lods_[0]);
+    for (SpeciesLod& lod : lods_) {
+        for (int level = 0; level < 16; ++level) {
+            lod.billboardError.push_back(level == 0 ? 0.0f
+                                                    : 0.05f * std::pow(1.3f, float(level - 1)));
+        }
+    }
+    settings_.method = VegetationMethod::Billboard;
+    settings_.minimumPixels = 0.0;
+    settings_.transitionBand = 0.0;
+    // 1.6 mm/px per metre of distance: 8 mm/px at 5 m (level 0), 19 m/px at 12 km, beyond
+    // the start of level 15 (0.05 × 1.3^14 ≈ 2 m/px).
+    InstancePlacement near = at(5.0, 0.0), far = at(12000.0, 0.0);
+    near.species = 0;
+    far.species = 0;
+    InstancePlacement other = far;
+    other.species = 1;
+    const InstanceBatch batch = LodSelector::makeBatch(camera_.position, {near, far, other}, lods_);
+    LodSelection out;
+    selector_.select({&batch}, lods_, camera_, settings_, out);
+    ASSERT_EQ(out.runs.size(), 3u);
+    EXPECT_EQ(out.runs[0].species, 0u);
+    EXPECT_EQ(out.runs[0].bucket, 0u);
+    EXPECT_EQ(out.runs[1].species, 0u);
+    EXPECT_EQ(out.runs[1].bucket, 15u);
+    EXPECT_EQ(out.runs[2].species, 1u);
+    EXPECT_EQ(out.runs[2].bucket, 15u);
+    for (const DrawRun& run : out.runs) {
+        EXPECT_EQ(run.kind, DrawRun::Kind::Billboard);
+    }
+}
+
+TEST_F(LodSelectorScene, MoreBillboardLevelsThanTheKeysHoldIsAProgrammerError) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    lods_[0].billboardError.assign(17, 1.0f);
+    const InstanceBatch batch = LodSelector::makeBatch(camera_.position, {at(30, 0)}, lods_);
+    LodSelection out;
+    EXPECT_DEATH(selector_.select({&batch}, lods_, camera_, settings_, out),
+                 "billboardError.size\\(\\) <= std::size_t\\(kMaxBillboardLevels\\)");
 }
 
 }  // namespace

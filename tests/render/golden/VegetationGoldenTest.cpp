@@ -66,7 +66,9 @@ protected:
         asset->name = "oak";
         asset->model = std::move(model.value());
         asset->lod = std::move(lod.value());
-        species_ = renderer_->vegetation().addSpecies(asset);
+        Result<std::uint32_t> species = renderer_->vegetation().addSpecies(asset);
+        ASSERT_TRUE(species) << species.error().message;
+        species_ = species.value();
     }
     static void TearDownTestSuite() {
         delete renderer_;

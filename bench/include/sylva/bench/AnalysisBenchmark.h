@@ -2,7 +2,7 @@
 // GDAL's viewshed on the Olinda DEM (data/olinda, scripts/fetch-samples) resampled
 // bilinearly to `resolution` (default 30 m: 333² cells), target 120 m on the DEM's
 // highest cell, observer 2 m, k = 0.13:
-//  - ztv_cells_per_s: cells per second of wall time of computeViewshed (parallelFor over
+//  - ztv_cells_per_s: cells per second of wall time of computeViewshed (WorkerPool over
 //    rows, all hardware threads), one target;
 //  - gdal_viewshed_cells_per_s: the same for GDALViewshedGenerate (libgdal, GVM_Edge as
 //    gdal_viewshed uses, MEM output, one thread) with its observer at the target;

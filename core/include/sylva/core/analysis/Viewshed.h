@@ -20,7 +20,7 @@
 //             (1: visible down to the ground; the part above the lowest visible point)
 // No-data observer cells give 0, 0 and NaN; no-data cells along a ray do not block.
 //
-// Cost: O(cells × targets × ray length in cells); rows run through parallelFor.
+// Cost: O(cells × targets × ray length in cells); rows run on WorkerPool::shared().
 // Failures: a target outside the hull of the cell centres, a non-positive target
 // height, a negative observer height or a bad refraction come back as Result errors.
 #pragma once

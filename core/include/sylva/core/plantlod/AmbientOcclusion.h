@@ -16,6 +16,7 @@
 
 #include <cstdint>
 
+#include "sylva/core/base/WorkerPool.h"
 #include "sylva/core/plantlod/PlantLod.h"
 #include "sylva/core/plantlod/PlantLodProgress.h"
 #include "sylva/core/plantlod/PlantModel.h"
@@ -27,7 +28,7 @@ struct AmbientOcclusionOptions {
     int bounces = 1;  // foliage albedo ~0.15: a second bounce adds about 2 %
     int calibrationRays = 2048;
     std::uint32_t seed = 1;
-    int threads = 0;
+    WorkerPool* pool = nullptr;  // rays and primitives run on it; null: WorkerPool::shared()
 };
 
 // Sets ambientOcclusion of every ellipsoid and line of `lod` (in [0, 1]).

@@ -46,8 +46,13 @@ struct BillboardLevel {
     }
 };
 
+// The most billboard-cloud levels a plant may carry: the vegetation renderer's run keys
+// have room for this many per species (LodSelector). The builder refuses options asking
+// for more, and reading a .plod with more fails naming the file.
+inline constexpr std::size_t kMaxBillboardLevels = 16;
+
 struct BillboardCloud {
-    std::vector<BillboardLevel> levels;  // finest first
+    std::vector<BillboardLevel> levels;  // finest first, at most kMaxBillboardLevels
 };
 
 struct BillboardCloudOptions {
@@ -66,7 +71,8 @@ struct BillboardCloudOptions {
 
 class BillboardCloudBuilder {
 public:
-    // Fails when the model has no triangles or the options are out of range.
+    // Fails when the model has no triangles or the options are out of range (among them
+    // more than kMaxBillboardLevels epsilons).
     static Result<BillboardCloud> build(const PlantModel& model,
                                         const BillboardCloudOptions& options = {});
     // One level as a renderable PlantModel: one mesh of textured quads (two triangles

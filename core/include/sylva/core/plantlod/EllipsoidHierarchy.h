@@ -23,6 +23,7 @@
 #include <span>
 #include <vector>
 
+#include "sylva/core/base/WorkerPool.h"
 #include "sylva/core/plantlod/GaussianMixture.h"
 #include "sylva/core/plantlod/PlantLod.h"
 #include "sylva/core/plantlod/PlantLodProgress.h"
@@ -45,15 +46,15 @@ std::vector<LodEllipsoid> ellipsoidsFromAssignments(std::span<const LodEllipsoid
                                                     bool hardAssignment = false);
 
 // Multi-scale RMSE of ellipsoids (drawn with `style`) against per-view reference images,
-// averaged over views level by level. `threads` renders views in parallel.
+// averaged over views level by level, the views rendered in parallel on `pool`.
 double ellipsoidImageError(const PrimitiveRasterizer& rasterizer,
                            std::span<const LodEllipsoid> ellipsoids,
                            const std::vector<std::vector<float>>& reference,
-                           const EllipsoidStyle& style, int threads);
+                           const EllipsoidStyle& style, WorkerPool& pool);
 
 struct EllipsoidHierarchyOptions {
     int restarts = 4;
-    int threads = 0;  // ≤ 0: all cores
+    WorkerPool* pool = nullptr;  // restarts and views run on it; null: WorkerPool::shared()
     std::uint32_t seed = 1;
     double discardAreaFraction = 0.01;
     GaussianMixtureOptions mixture;

@@ -25,6 +25,7 @@
 #include <limits>
 #include <vector>
 
+#include "sylva/core/base/WorkerPool.h"
 #include "sylva/core/plantlod/PlantLod.h"
 #include "sylva/core/plantlod/PlantLodProgress.h"
 #include "sylva/core/plantlod/PlantModel.h"
@@ -89,7 +90,9 @@ struct LineHierarchyOptions {
     int cachedCandidates = 16;  // N_cache
     std::uint32_t seed = 1;
     float widthScale = 1.0f;  // calibrated line width scale
-    int threads = 1;          // candidate measurements in parallel (result independent of it)
+    // Runs the candidate measurements in parallel (the result does not depend on it);
+    // null: WorkerPool::shared().
+    WorkerPool* pool = nullptr;
 };
 
 struct LineHierarchyResult {

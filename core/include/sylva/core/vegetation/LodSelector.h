@@ -19,17 +19,22 @@
 //
 // Cost: one pass over the instances (transform to view space, sphere/frustum test, error,
 // bucket), a counting sort, and a pass writing the selected instances' view transforms;
-// the work is split over the cores. Frames: instances are stored relative to a double-
-// precision ECEF origin per batch; everything the GPU sees is in camera-relative view
-// space (metres, float).
+// both passes run in chunks on a WorkerPool. The output does not depend on the thread
+// count: chunks are contiguous ranges of instances, merged in order. Frames: instances are stored
+// relative to a double- precision ECEF origin per batch; everything the GPU sees is in
+// camera-relative view space (metres, float).
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "sylva/core/base/Result.h"
+#include "sylva/core/base/WorkerPool.h"
+#include "sylva/core/plantlod/BillboardCloudBuilder.h"
 #include "sylva/core/plantlod/PlantAsset.h"
 #include "sylva/core/scene/Camera.h"
 
@@ -84,6 +89,7 @@ struct SpeciesLod {
     // the bucket may draw — what the renderer needs to bound the sprite sizes of a run.
     std::vector<float> ellipsoidRadius;
     // Billboard-cloud levels: level i is drawn in [billboardError[i], billboardError[i+1]).
+    // At most LodSelector::kMaxBillboardLevels.
     std::vector<float> billboardError;
 };
 
@@ -138,16 +144,36 @@ struct LodSelection {
     std::size_t drawnLines = 0;
 };
 
+// The selector of one renderer (or benchmark): an object so that it owns the per-chunk
+// scratch of its passes, which keeps its capacity from frame to frame (fresh buffers
+// would be paged in again every frame). Not thread-safe: one select() at a time per
+// object; the passes themselves run on the WorkerPool given at construction.
 class LodSelector {
 public:
     static constexpr int kBucketCount = 64;
     static constexpr double kBucketRatio = 1.25;
     static constexpr double kSmallestError = 1e-4;  // metres per pixel of bucket 0
+    // Billboard-cloud levels per species the run keys have room for.
+    static constexpr int kMaxBillboardLevels = int(sylva::kMaxBillboardLevels);
+    // Run-key slots per species: the primitive buckets, the mesh, the billboard levels.
+    static constexpr int kSlotsPerSpecies = kBucketCount + 1 + kMaxBillboardLevels;
+    // Run keys are 16 bits and 0xFFFF means "none": species × slots must stay below it.
+    static constexpr int kMaxSpecies = (0xFFFF - 1) / kSlotsPerSpecies;
+
+    // `pool` runs the per-instance passes; null: WorkerPool::shared(). Not owned: it must
+    // outlive the selector.
+    explicit LodSelector(WorkerPool* pool = nullptr);
 
     // The tables of one species; meshError is the finest ellipsoid level's own error
     // (below it a leaf covers more than ~5 pixels and the source mesh is drawn).
     // billboardError is left empty: the renderer fills it when it has billboard levels.
     static SpeciesLod describe(const PlantAsset& asset, double transitionBand);
+
+    // Whether a species with `billboardLevels` billboard-cloud levels can be added as
+    // species number `index` (0-based) without overflowing the run keys. The error names
+    // `name` and the limit that is exceeded; callers attaching plant LoDs check this.
+    static Status checkSpecies(std::size_t index, std::size_t billboardLevels,
+                               const std::string& name);
 
     // Builds a batch from placements (local frame: east, north, up at each base; model
     // +Y to the heading). `species` gives each species' bounding sphere.
@@ -158,13 +184,39 @@ public:
     static int bucketOf(double error);
     static double bucketLowerError(int bucket);
 
-    // Selects and fills `out` (reused between frames to keep its capacity).
-    static void select(const std::vector<const InstanceBatch*>& batches,
-                       const std::vector<SpeciesLod>& species, const Camera& camera,
-                       const LodSelectionSettings& settings, LodSelection& out);
+    // Selects and fills `out` (reused between frames to keep its capacity). `species`
+    // must pass checkSpecies (SYLVA_CHECK: at most kMaxSpecies species, at most
+    // kMaxBillboardLevels billboard levels each).
+    void select(const std::vector<const InstanceBatch*>& batches,
+                const std::vector<SpeciesLod>& species, const Camera& camera,
+                const LodSelectionSettings& settings, LodSelection& out);
 
     // The frustum side planes of a symmetric perspective camera, view space.
     static void setFrustum(LodSelectionSettings& settings, double verticalFov, double aspect);
+
+private:
+    // The per-instance decision of one frame.
+    struct Decision {
+        std::uint32_t batch = 0, index = 0;
+        float error = 0.0f;
+        glm::vec3 originView{0.0f};
+        std::uint16_t key = 0;   // run key: species × slots + slot
+        std::uint16_t key2 = 0;  // second run during a handover (0xFFFF: none)
+    };
+    struct Frame;  // what every pass of one select() reads
+
+    std::size_t cullBatches(const std::vector<const InstanceBatch*>& batches, const Frame& frame);
+    void decideChunk(int chunk, const Frame& frame);
+    void sortRuns(const Frame& frame, LodSelection& out);
+    void writeInstances(const Frame& frame, LodSelection& out);
+
+    WorkerPool* pool_;
+    // Scratch of select(), kept between frames.
+    std::vector<const InstanceBatch*> batches_;      // the batches that pass the culling
+    std::vector<std::size_t> batchStart_;            // first instance of each, then the total
+    std::vector<std::vector<Decision>> decided_;     // pass 1: per chunk
+    std::vector<std::uint32_t> start_;               // first instance per run key, then the total
+    std::vector<std::vector<std::uint32_t>> slots_;  // pass 2: per chunk, two per decision
 };
 
 }  // namespace sylva

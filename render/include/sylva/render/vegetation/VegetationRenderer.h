@@ -61,9 +61,11 @@ public:
     ~VegetationRenderer();
 
     // Uploads one species; returns its index (species indices of batches refer to it).
-    // Assets are kept alive by the renderer.
-    std::uint32_t addSpecies(std::shared_ptr<const PlantAsset> asset,
-                             double transitionBand = VegetationSettings{}.transitionBand);
+    // Assets are kept alive by the renderer. Fails (the error names the plant), uploading
+    // nothing, when the species would exceed LodSelector's limits: at most
+    // LodSelector::kMaxSpecies species and kMaxBillboardLevels billboard levels each.
+    Result<std::uint32_t> addSpecies(std::shared_ptr<const PlantAsset> asset,
+                                     double transitionBand = VegetationSettings{}.transitionBand);
     std::size_t speciesCount() const { return species_.size(); }
     const std::vector<SpeciesLod>& speciesLods() const { return lods_; }
     // The asset of a species index (for the stream's name → index map).
@@ -99,6 +101,7 @@ private:
     std::size_t instanceCapacity_ = 0;
     GlVertexArray primitiveArray_;   // instance attributes only
     float maximumPointSize_ = 1.0f;  // pixels: the driver's largest point sprite
+    LodSelector selector_;           // its scratch is kept from frame to frame
     LodSelection selection_;
     VegetationStatistics statistics_;
 };
