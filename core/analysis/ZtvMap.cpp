@@ -21,6 +21,7 @@ constexpr Rgb kBlack = {0, 0, 0};
 constexpr Rgb kWhite = {255, 255, 255};
 constexpr Rgb kHatchDark = {70, 70, 70};
 constexpr Rgb kHatchLight = {205, 205, 205};
+constexpr Rgb kRingLabel = {10, 40, 110};  // darker than the rings, so ring pixels are lines
 
 // Grey of a shade 0..1: an ambient floor so slopes away from the sun keep detail.
 double greyOf(double shade) {
@@ -164,7 +165,7 @@ void drawRingLabels(RgbaImage& image, const Frame& f, const ViewshedTarget& t, d
         for (const auto& other : avoid)
             hidden = hidden || overlaps(box, other);
         if (!hidden)
-            BitmapFont::draw(image, lx, ly, label, fontScale, kZtvRingColour.data(), kWhite.data());
+            BitmapFont::draw(image, lx, ly, label, fontScale, kRingLabel.data(), kWhite.data());
     }
 }
 
