@@ -381,8 +381,13 @@ ZtvMap drawZtvMap(const ElevationGrid& grid, const ViewshedResult& result,
         map.layout.ringSpacing = ringSpacing(farthestCorner(g, targets[0]));
         drawRingLines(map.image, frame, targets[0], map.layout.ringSpacing);
     }
-    for (const ViewshedTarget& t : targets)
-        drawTarget(map.image, frame, t, 4 * fontScale);
+    for (std::size_t i = 0; i < targets.size(); ++i) {
+        drawTarget(map.image, frame, targets[i], 4 * fontScale);
+        if (targets.size() > 1)  // numbered, since the rings and legend name target 1
+            BitmapFont::draw(map.image, int(frame.px(targets[i].x)) + 6 * fontScale,
+                             int(frame.py(targets[i].y)) - 3 * fontScale, std::to_string(i + 1),
+                             fontScale, kBlack.data(), kWhite.data());
+    }
     const bool noData = std::any_of(result.fraction.begin(), result.fraction.end(),
                                     [](float v) { return std::isnan(v); });
     drawLegend(map.image, options, int(targets.size()), noData, fontScale, legend, map.layout);
