@@ -1,9 +1,11 @@
 // `sylva analyse PROJECT [--only NAME] [--out DIR] [--json] [-D name=value]
 // [--set block.attr=value]`: evaluates the project's analysis blocks (ztv) and writes
-// their GeoTIFFs (core/analysis). Every selected block is planned against its DEM first,
+// their GeoTIFFs and styled PNG maps (core/analysis; the map is the GeoTIFF's path with
+// the extension .png). Every selected block is planned against its DEM first,
 // so a located error in any of them stops the command before a file is written; each
-// file is written atomically. Progress goes to stderr; --json prints one summary per
-// block on stdout (name, output, cells, visible cells and share, targets, seconds).
+// file is written atomically, and a study whose GeoTIFF fails leaves no map either. Progress goes
+// to stderr; --json prints one summary per block on stdout (name, output, cells, visible cells and
+// share, targets, seconds).
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -14,6 +16,7 @@
 #include "Commands.h"
 #include "ProjectSession.h"
 #include "sylva/core/analysis/Viewshed.h"
+#include "sylva/core/analysis/ZtvMap.h"
 #include "sylva/core/analysis/ZtvStudy.h"
 #include "sylva/core/analysis/ZtvWriter.h"
 #include "sylva/dsl/ProjectLoader.h"
@@ -65,7 +68,15 @@ std::optional<nlohmann::ordered_json> runStudy(const ZtvStudy& study,
     const std::filesystem::path path = outFolder / study.output;
     std::error_code error;
     std::filesystem::create_directories(path.parent_path(), error);
+    std::filesystem::path mapPath = path;
+    mapPath.replace_extension(".png");
+    const ZtvMap map = drawZtvMap(*grid, *result, study.targets, {study.name, study.options});
+    if (Status written = writeZtvMap(mapPath, map); !written) {
+        reportError("ztv '" + study.name + "': " + written.error().message);
+        return std::nullopt;
+    }
     if (Status written = writeZtvGeoTiff(path, *result, study.crsWkt); !written) {
+        std::filesystem::remove(mapPath, error);  // no map without its GeoTIFF
         reportError("ztv '" + study.name + "': " + written.error().message);
         return std::nullopt;
     }
@@ -73,11 +84,13 @@ std::optional<nlohmann::ordered_json> runStudy(const ZtvStudy& study,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const std::size_t visible = result->visibleCells();
     const double share = double(visible) / double(result->cells());
-    std::fprintf(stderr, "ztv '%s': %.1f %% of cells see a target; wrote %s (%.2f s)\n",
-                 study.name.c_str(), 100.0 * share, path.string().c_str(), seconds);
+    std::fprintf(stderr, "ztv '%s': %.1f %% of cells see a target; wrote %s and %s (%.2f s)\n",
+                 study.name.c_str(), 100.0 * share, path.string().c_str(), mapPath.string().c_str(),
+                 seconds);
     nlohmann::ordered_json summary;
     summary["name"] = study.name;
     summary["output"] = path.string();
+    summary["map"] = mapPath.string();
     summary["cells"] = result->cells();
     summary["visible_cells"] = visible;
     summary["visible_share"] = share;

@@ -2,7 +2,8 @@
 # End-to-end tests of `sylva analyse`: a synthetic DEM (a hill on a plain, made here with
 # gdal_translate, UTM 25S, 30 m) and small projects written into the scratch folder; the
 # GeoTIFF written is read back with GDAL (gdalinfo: size, origin, pixel size, CRS, bands,
-# compression, overviews), and broken projects give located errors and write nothing.
+# compression, overviews), the PNG map beside it has the grid's aspect, and broken projects
+# or unwritable outputs give errors and leave nothing behind.
 # With the sample data, the keys of `sylva bench analysis --json`.
 #
 # usage: SYLVA_BIN=path/to/sylva bash analyse_cli_test.sh SCRATCH_DIR
@@ -38,10 +39,11 @@ project() {
         printf '%s\n' "$2"
     } >"$SCRATCH/$1.sylva"
 }
-# expect_nothing_written: no .tif nor temporary file under the output folder.
+# expect_nothing_written: no .tif, .png nor temporary file under the output folder.
 expect_nothing_written() {
     local found
-    found=$(find "$SCRATCH/out" \( -name '*.tif' -o -name '.sylva-*' \) -print 2>/dev/null)
+    found=$(find "$SCRATCH/out" -type f \( -name '*.tif' -o -name '*.png' -o -name '.sylva-*' \) \
+        -print 2>/dev/null)
     [ -z "$found" ] || fail "files left behind: $found"
 }
 
@@ -87,7 +89,37 @@ if [ -f "$tif" ]; then
 else
     fail "no $tif"
 fi
+png=$SCRATCH/out/mast.png
+if [ -f "$png" ]; then
+    size=$(gdalinfo "$png" | sed -n 's/^Size is \([0-9]*\), \([0-9]*\)$/\1 \2/p')
+    read -r pw ph <<<"$size"
+    # 40 x 36 cells: the map keeps the grid's aspect (whole pixels per cell).
+    [ -n "$pw" ] && [ $((pw * 36)) -eq $((ph * 40)) ] || fail "map size '$size' lacks the 40:36 aspect"
+    [ "${pw:-0}" -ge 400 ] || fail "map only $pw px wide"
+    gdalinfo "$png" | grep -q "Band 3" || fail "map is not RGB"
+else
+    fail "no $png"
+fi
+expect_stdout '"map": '
 [ -z "$(find "$SCRATCH/out" -name '.sylva-*')" ] || fail "temporary file left behind"
+end
+
+begin "the map cannot be written -> error, no GeoTIFF, nothing left behind"
+rm -rf "$SCRATCH/out"
+mkdir -p "$SCRATCH/out/mast.png"
+(cd "$SCRATCH" && "$SYLVA" analyse good.sylva >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 1
+expect_stderr "ztv 'mast': "
+expect_nothing_written
+end
+
+begin "the GeoTIFF cannot be written -> error, its map removed, nothing left behind"
+rm -rf "$SCRATCH/out"
+mkdir -p "$SCRATCH/out/mast.tif"
+(cd "$SCRATCH" && "$SYLVA" analyse good.sylva >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 1
+expect_stderr "ztv 'mast': "
+expect_nothing_written
 end
 
 project outside 'ztv mast {
