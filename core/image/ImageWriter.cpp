@@ -57,7 +57,8 @@ Status writeAtomically(const std::filesystem::path& path, OIIO::ImageSpec spec,
 }
 
 // Reads any image as RGBA of `Channel` (OIIO converts to `pixelType`, i.e. scales to the
-// channel's range): missing alpha is opaque, grey is copied into G and B.
+// channel's range): missing alpha is opaque, grey is copied into G and B, a grey image's
+// alpha (its second channel) becomes A.
 template <typename Channel>
 Result<Image<Channel>> readImage(const std::filesystem::path& path, OIIO::TypeDesc pixelType) {
     // Keep alpha straight on reading too (OIIO premultiplies by default).
@@ -74,8 +75,11 @@ Result<Image<Channel>> readImage(const std::filesystem::path& path, OIIO::TypeDe
                            4 * sizeof(Channel))) {
         return Error{path.string() + ": cannot read image: " + input->geterror()};
     }
-    if (channels < 3) {  // grey: copy into G and B
+    if (channels < 3) {  // grey (+ alpha, read into slot 1): alpha to A, grey into G and B
         for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
+            if (channels == 2) {
+                image.pixels[i + 3] = image.pixels[i + 1];
+            }
             image.pixels[i + 1] = image.pixels[i + 2] = image.pixels[i];
         }
     }

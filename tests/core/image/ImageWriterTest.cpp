@@ -1,5 +1,6 @@
 #include "sylva/core/image/ImageWriter.h"
 
+#include <gdal_priv.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -52,6 +53,50 @@ TEST(ImageWriter, WritesAtomicallyAndReadsBack) {
 
 TEST(ImageWriter, TranslucentPixelsReadBackUnchanged) {
     roundTrip("translucent", false);
+}
+
+// A grey + alpha PNG written by another library (GDAL's PNG driver: two bands are grey and
+// alpha) reads as grey in R, G, B and its own alpha in A (the second channel used to be
+// overwritten by grey, so every such image read as opaque).
+TEST(ImageWriter, GreyAlphaPngKeepsItsAlpha) {
+    GDALAllRegister();
+    const fs::path folder = scratch("grey-alpha");
+    const fs::path path = folder / "grey-alpha.png";
+    const int width = 4, height = 2;
+    std::vector<std::uint8_t> grey(width * height), alpha(width * height);
+    for (int i = 0; i < width * height; ++i) {
+        grey[std::size_t(i)] = std::uint8_t(30 * i + 10);
+        alpha[std::size_t(i)] = std::uint8_t(255 - 25 * i);
+    }
+    GDALDriver* memory = GetGDALDriverManager()->GetDriverByName("MEM");
+    GDALDriver* png = GetGDALDriverManager()->GetDriverByName("PNG");
+    ASSERT_NE(memory, nullptr);
+    ASSERT_NE(png, nullptr);
+    GDALDataset* source = memory->Create("", width, height, 2, GDT_Byte, nullptr);
+    ASSERT_NE(source, nullptr);
+    ASSERT_EQ(source->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, width, height, grey.data(), width,
+                                                 height, GDT_Byte, 0, 0),
+              CE_None);
+    ASSERT_EQ(source->GetRasterBand(2)->RasterIO(GF_Write, 0, 0, width, height, alpha.data(), width,
+                                                 height, GDT_Byte, 0, 0),
+              CE_None);
+    GDALDataset* written =
+        png->CreateCopy(path.string().c_str(), source, FALSE, nullptr, nullptr, nullptr);
+    ASSERT_NE(written, nullptr);
+    GDALClose(written);
+    GDALClose(source);
+    int w = 0, h = 0;
+    Result<std::vector<std::uint8_t>> read = ImageWriter::readRgba8(path, w, h);
+    ASSERT_TRUE(read) << read.error().message;
+    ASSERT_EQ(w, width);
+    ASSERT_EQ(h, height);
+    for (std::size_t i = 0; i < grey.size(); ++i) {
+        EXPECT_EQ(read.value()[i * 4 + 0], grey[i]) << "pixel " << i;
+        EXPECT_EQ(read.value()[i * 4 + 1], grey[i]) << "pixel " << i;
+        EXPECT_EQ(read.value()[i * 4 + 2], grey[i]) << "pixel " << i;
+        EXPECT_EQ(read.value()[i * 4 + 3], alpha[i]) << "pixel " << i;
+    }
+    fs::remove_all(folder);
 }
 
 TEST(ImageWriter, ParentIsARegularFile) {
