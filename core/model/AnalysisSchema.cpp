@@ -3,18 +3,13 @@
 // the source kinds and the render blocks so the analyses can grow on their own.
 #include <utility>
 
+#include "AttributeBuilders.h"
 #include "sylva/core/model/Schema.h"
 
 namespace sylva {
 namespace {
 
-AttributeSchema attribute(std::string name, ValueType type, std::string doc) {
-    AttributeSchema a;
-    a.name = std::move(name);
-    a.type = type;
-    a.doc = std::move(doc);
-    return a;
-}
+using schema::attribute;
 
 AttributeSchema length(std::string name, std::optional<double> defaultValue, double minimum,
                        std::string doc) {

@@ -3,18 +3,13 @@
 // kinds in BuiltinSchema.cpp so the two tables can grow independently.
 #include <utility>
 
+#include "AttributeBuilders.h"
 #include "sylva/core/model/Schema.h"
 
 namespace sylva {
 namespace {
 
-AttributeSchema attribute(std::string name, ValueType type, std::string doc) {
-    AttributeSchema a;
-    a.name = std::move(name);
-    a.type = type;
-    a.doc = std::move(doc);
-    return a;
-}
+using schema::attribute;
 
 AttributeSchema angle(std::string name, double limitDegrees, std::string doc) {
     AttributeSchema a = attribute(std::move(name), ValueType::Number, std::move(doc));
