@@ -15,6 +15,7 @@
 #include "CommandLine.h"
 #include "Commands.h"
 #include "ProjectSession.h"
+#include "sylva/core/analysis/ScreeningSurface.h"
 #include "sylva/core/analysis/Viewshed.h"
 #include "sylva/core/analysis/ZtvMap.h"
 #include "sylva/core/analysis/ZtvStudy.h"
@@ -60,7 +61,19 @@ std::optional<nlohmann::ordered_json> runStudy(const ZtvStudy& study,
     }
     std::fprintf(stderr, "ztv '%s': %d x %d cells of %.1f m, %zu target(s)\n", study.name.c_str(),
                  study.grid.width, study.grid.height, study.grid.cellWidth, study.targets.size());
-    auto result = computeViewshed(*grid, study.targets, study.options);
+    std::optional<ScreeningSurface> screened;
+    if (!study.screens.empty()) {
+        auto surface = buildScreeningSurface(*grid, study.screens);
+        if (!surface) {
+            reportError("ztv '" + study.name + "': " + surface.error().message);
+            return std::nullopt;
+        }
+        screened = std::move(*surface);
+        std::fprintf(stderr, "ztv '%s': screened by %zu building and %zu canopy cells\n",
+                     study.name.c_str(), screened->buildingCells, screened->canopyCells);
+    }
+    auto result = screened ? computeViewshed(*grid, screened->surface, study.targets, study.options)
+                           : computeViewshed(*grid, study.targets, study.options);
     if (!result) {
         reportError("ztv '" + study.name + "': " + result.error().message);
         return std::nullopt;
@@ -95,6 +108,9 @@ std::optional<nlohmann::ordered_json> runStudy(const ZtvStudy& study,
     summary["visible_cells"] = visible;
     summary["visible_share"] = share;
     summary["targets"] = study.targets.size();
+    summary["screened"] = screened.has_value();
+    summary["building_cells"] = screened ? screened->buildingCells : 0;
+    summary["canopy_cells"] = screened ? screened->canopyCells : 0;
     summary["seconds"] = seconds;
     return summary;
 }

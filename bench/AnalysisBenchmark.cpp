@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <optional>
 #include <random>
@@ -82,6 +83,7 @@ Result<AnalysisBenchmarkResult> runAnalysisBenchmark(const AnalysisBenchmarkOpti
                                 geometry.centreY(double(top / std::size_t(geometry.width))), 120.0};
     ViewshedOptions vo;
     vo.earthRadius = 6378137.0;  // as GDAL 3.6, so agreement compares like with like
+    vo.fraction = false;         // visibility only, what gdal_viewshed computes
     std::optional<ViewshedResult> ours;
     const double oursSeconds = bestSeconds(options.repeats, [&] {
         auto r = computeViewshed(*grid, std::span(&target, 1), vo);
@@ -117,6 +119,29 @@ Result<AnalysisBenchmarkResult> runAnalysisBenchmark(const AnalysisBenchmarkOpti
     std::size_t agree = 0;
     for (std::size_t i = 0; i < theirs.size(); ++i)
         agree += (theirs[i] == 255) == (ours->visible[i] == 1) ? 1 : 0;
+    for (const auto& [mode, name] : {std::pair{GVM_Diagonal, "diagonal"},
+                                     {GVM_Edge, "edge"},
+                                     {GVM_Max, "max"},
+                                     {GVM_Min, "min"}}) {
+        GDALDatasetH modeInput = memoryDataset(*grid);
+        GDALDatasetH out = GDALViewshedGenerate(
+            GDALGetRasterBand(modeInput, 1), "MEM", "", nullptr, target.x, target.y, target.height,
+            vo.observerHeight, 255, 0, 0, 0, 1.0 - vo.refraction, mode, 0, nullptr, nullptr,
+            GVOT_NORMAL, nullptr);
+        std::vector<std::uint8_t> other(ours->cells());
+        if (out != nullptr && GDALRasterIO(GDALGetRasterBand(out, 1), GF_Read, 0, 0, geometry.width,
+                                           geometry.height, other.data(), geometry.width,
+                                           geometry.height, GDT_Byte, 0, 0) == CE_None) {
+            std::size_t same = 0;
+            for (std::size_t i = 0; i < other.size(); ++i)
+                same += (other[i] == 255) == (ours->visible[i] == 1) ? 1 : 0;
+            std::fprintf(stderr, "analysis: gdal mode %s agrees on %.4f of cells\n", name,
+                         double(same) / double(other.size()));
+        }
+        if (out != nullptr)
+            GDALClose(out);
+        GDALClose(modeInput);
+    }
 
     std::mt19937 random(19);
     std::vector<ViewshedTarget> targets;

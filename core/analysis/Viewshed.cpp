@@ -5,6 +5,8 @@
 #include <limits>
 #include <string>
 
+#include "SightLine.h"
+#include "sylva/core/analysis/HorizonSweep.h"
 #include "sylva/core/base/WorkerPool.h"
 
 namespace sylva {
@@ -12,53 +14,6 @@ namespace sylva {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-// One ray from an observer cell centre (oc, orow) to the target (tc, tr), in grid
-// coordinates; distances in metres.
-struct Ray {
-    double oc, orow, tc, tr;
-    double length;     // horizontal metres from eye to target
-    double eye;        // eye elevation, metres
-    double sagFactor;  // (1 − k) / (2R), 1/m; 0 without curvature
-};
-
-// Largest (terrain − eye) / distance over the crossings of the ray with the grid lines
-// `index = const` of one axis, strictly between observer and target. `along` is the
-// axis the lines cross (column lines: x), `across` the other one.
-double maxSlopeOverLines(const ElevationGrid& grid, const Ray& ray, bool columnLines) {
-    const double from = columnLines ? ray.oc : ray.orow;
-    const double to = columnLines ? ray.tc : ray.tr;
-    const double span = to - from;
-    if (span == 0.0)
-        return -kInfinity;
-    const double acrossFrom = columnLines ? ray.orow : ray.oc;
-    const double acrossSpan = (columnLines ? ray.tr : ray.tc) - acrossFrom;
-    const int last = columnLines ? grid.geometry.width - 1 : grid.geometry.height - 1;
-    const int acrossLast = columnLines ? grid.geometry.height - 1 : grid.geometry.width - 1;
-    const int step = span > 0.0 ? 1 : -1;
-    const int first = int(from) + step;
-    // Lines strictly between: k in (from, to) open.
-    const int end = span > 0.0 ? int(std::ceil(to)) : int(std::floor(to));
-    double best = -kInfinity;
-    for (int k = first; k != end; k += step) {
-        if (k < 0 || k > last)
-            break;
-        const double s = (k - from) / span;  // 0..1 along the ray
-        const double across = std::clamp(acrossFrom + s * acrossSpan, 0.0, double(acrossLast));
-        const int a0 = std::min(int(across), std::max(acrossLast - 1, 0));
-        const int a1 = std::min(a0 + 1, acrossLast);
-        const double f = across - a0;
-        const float z0 = columnLines ? grid.at(k, a0) : grid.at(a0, k);
-        const float z1 = columnLines ? grid.at(k, a1) : grid.at(a1, k);
-        const double z = z0 * (1.0 - f) + z1 * f;
-        if (std::isnan(z))
-            continue;
-        const double d = s * ray.length;
-        const double slope = (z - d * d * ray.sagFactor - ray.eye) / d;
-        best = std::max(best, slope);
-    }
-    return best;
-}
 
 Status checkInputs(const ElevationGrid& grid, std::span<const ViewshedTarget> targets,
                    const ViewshedOptions& options) {
@@ -70,6 +25,8 @@ Status checkInputs(const ElevationGrid& grid, std::span<const ViewshedTarget> ta
         return Error{"the observer height must not be negative"};
     if (!(options.refraction >= 0.0 && options.refraction < 1.0))
         return Error{"the refraction coefficient must lie in [0, 1)"};
+    if (!(options.refineMargin >= 0.0))
+        return Error{"the refinement margin must not be negative"};
     if (!(options.earthRadius > 0.0))
         return Error{"the Earth radius must be positive"};
     if (targets.size() > 65535)
@@ -87,6 +44,10 @@ Status checkInputs(const ElevationGrid& grid, std::span<const ViewshedTarget> ta
     return Status::success();
 }
 
+double sagFactorOf(const ViewshedOptions& options) {
+    return options.curvature ? (1.0 - options.refraction) / (2.0 * options.earthRadius) : 0.0;
+}
+
 }  // namespace
 
 std::size_t ViewshedResult::visibleCells() const {
@@ -95,51 +56,65 @@ std::size_t ViewshedResult::visibleCells() const {
 
 double lowestVisibleHeight(const ElevationGrid& grid, int col, int row,
                            const ViewshedTarget& target, const ViewshedOptions& options) {
-    const GridGeometry& g = grid.geometry;
-    Ray ray;
-    ray.oc = col;
-    ray.orow = row;
-    ray.tc = g.colOf(target.x);
-    ray.tr = g.rowOf(target.y);
-    ray.length = std::hypot((ray.tc - ray.oc) * g.cellWidth, (ray.tr - ray.orow) * g.cellHeight);
-    ray.eye = grid.at(col, row) + options.observerHeight;
-    ray.sagFactor =
-        options.curvature ? (1.0 - options.refraction) / (2.0 * options.earthRadius) : 0.0;
-    const double ground = grid.interpolate(ray.tc, ray.tr);
-    if (ray.length == 0.0)
+    return lowestVisibleHeight(grid, grid, col, row, target, options);
+}
+
+double lowestVisibleHeight(const ElevationGrid& surface, const ElevationGrid& ground, int col,
+                           int row, const ViewshedTarget& target, const ViewshedOptions& options) {
+    const GridGeometry& g = surface.geometry;
+    SightLine line;
+    line.fromCol = col;
+    line.fromRow = row;
+    line.toCol = g.colOf(target.x);
+    line.toRow = g.rowOf(target.y);
+    line.length = std::hypot((line.toCol - col) * g.cellWidth, (line.toRow - row) * g.cellHeight);
+    line.start = ground.at(col, row) + options.observerHeight;
+    line.sagFactor = sagFactorOf(options);
+    const double foot = ground.interpolate(line.toCol, line.toRow);
+    if (line.length == 0.0)
         return -kInfinity;  // the target stands in the observer's cell
-    const double slope =
-        std::max(maxSlopeOverLines(grid, ray, true), maxSlopeOverLines(grid, ray, false));
+    const double slope = maxCrossingSlope(surface, line);
     if (slope == -kInfinity)
         return -kInfinity;
     // Target elevation needed (curved frame of the eye), back to height above ground.
-    const double sag = ray.length * ray.length * ray.sagFactor;
-    return ray.eye + slope * ray.length + sag - ground;
+    const double sag = line.length * line.length * line.sagFactor;
+    return line.start + slope * line.length + sag - foot;
 }
 
-Result<ViewshedResult> computeViewshed(const ElevationGrid& grid,
-                                       std::span<const ViewshedTarget> targets,
-                                       const ViewshedOptions& options) {
-    if (Status ok = checkInputs(grid, targets, options); !ok)
-        return ok.error();
-    const GridGeometry& g = grid.geometry;
-    const std::size_t cells = std::size_t(g.width) * std::size_t(g.height);
-    ViewshedResult result;
-    result.geometry = g;
-    result.visible.assign(cells, 0);
-    result.count.assign(cells, 0);
-    result.fraction.assign(cells, 0.0f);
+bool insideScreen(const ElevationGrid& ground, const ElevationGrid& surface, std::size_t cell,
+                  double observerHeight) {
+    return &ground != &surface && surface.heights[cell] - ground.heights[cell] >= observerHeight;
+}
+
+namespace {
+
+// The terrain of one computation: sight lines over `surface`, eyes and feet on `ground`
+// (the same grid for the bare-earth ZTV).
+struct Terrain {
+    const ElevationGrid& ground;
+    const ElevationGrid& surface;
+
+    // No observer here: no data, or inside a screen.
+    bool noObserver(std::size_t i, const ViewshedOptions& options) const {
+        return std::isnan(ground.heights[i]) ||
+               insideScreen(ground, surface, i, options.observerHeight);
+    }
+};
+
+// The exact method: every cell's line of sight to every target (R3), rows in parallel.
+void exactViewshed(const Terrain& terrain, std::span<const ViewshedTarget> targets,
+                   const ViewshedOptions& options, ViewshedResult& result) {
+    const GridGeometry& g = terrain.ground.geometry;
     WorkerPool::shared().run(g.height, [&](int row) {
         for (int col = 0; col < g.width; ++col) {
             const std::size_t i = std::size_t(row) * std::size_t(g.width) + std::size_t(col);
-            if (std::isnan(grid.at(col, row))) {
-                result.fraction[i] = std::numeric_limits<float>::quiet_NaN();
+            if (terrain.noObserver(i, options))
                 continue;
-            }
             int count = 0;
             double fraction = 0.0;
             for (const ViewshedTarget& target : targets) {
-                const double lowest = lowestVisibleHeight(grid, col, row, target, options);
+                const double lowest =
+                    lowestVisibleHeight(terrain.surface, terrain.ground, col, row, target, options);
                 if (lowest > target.height)
                     continue;
                 ++count;
@@ -148,9 +123,86 @@ Result<ViewshedResult> computeViewshed(const ElevationGrid& grid,
             }
             result.visible[i] = count > 0 ? 1 : 0;
             result.count[i] = std::uint16_t(count);
-            result.fraction[i] = float(fraction);
+            result.fraction[i] = options.fraction ? float(fraction) : 0.0f;
         }
     });
+}
+
+// The sweep method, one target: the sweep from the top decides visibility; with
+// fractions, a sweep from the foot finds the cells seen down to the ground (1) and R3
+// gives the lowest visible point of the rest of the visible cells.
+void sweepTarget(const Terrain& terrain, const ViewshedTarget& target,
+                 const ViewshedOptions& options, ViewshedResult& result) {
+    const GridGeometry& g = terrain.ground.geometry;
+    HorizonSweepInput input;
+    input.col = g.colOf(target.x);
+    input.row = g.rowOf(target.y);
+    input.sagFactor = sagFactorOf(options);
+    input.observerHeight = options.observerHeight;
+    input.refineMargin = options.refineMargin;
+    input.eyeGround = &terrain.ground;
+    const double foot = terrain.ground.interpolate(input.col, input.row);
+    HorizonSweepResult top, base;
+    WorkerPool::shared().run(options.fraction ? 2 : 1, [&](int which) {
+        HorizonSweepInput in = input;
+        in.top = foot + (which == 0 ? target.height : 0.0);
+        (which == 0 ? top : base) = sweepHorizons(terrain.surface, in);
+    });
+    WorkerPool::shared().run(g.height, [&](int row) {
+        for (int col = 0; col < g.width; ++col) {
+            const std::size_t i = std::size_t(row) * std::size_t(g.width) + std::size_t(col);
+            if (top.visible[i] == 0 || terrain.noObserver(i, options))
+                continue;
+            result.visible[i] = 1;
+            ++result.count[i];
+            if (!options.fraction)
+                continue;
+            double fraction = 1.0;
+            if (base.visible[i] == 0) {
+                const double lowest =
+                    lowestVisibleHeight(terrain.surface, terrain.ground, col, row, target, options);
+                fraction = std::clamp((target.height - lowest) / target.height, 0.0, 1.0);
+            }
+            result.fraction[i] = std::max(result.fraction[i], float(fraction));
+        }
+    });
+}
+
+}  // namespace
+
+Result<ViewshedResult> computeViewshed(const ElevationGrid& grid,
+                                       std::span<const ViewshedTarget> targets,
+                                       const ViewshedOptions& options) {
+    return computeViewshed(grid, grid, targets, options);
+}
+
+Result<ViewshedResult> computeViewshed(const ElevationGrid& ground, const ElevationGrid& surface,
+                                       std::span<const ViewshedTarget> targets,
+                                       const ViewshedOptions& options) {
+    if (Status ok = checkInputs(ground, targets, options); !ok)
+        return ok.error();
+    const GridGeometry& g = ground.geometry;
+    const GridGeometry& s = surface.geometry;
+    if (s.width != g.width || s.height != g.height || s.originX != g.originX ||
+        s.originY != g.originY || s.cellWidth != g.cellWidth || s.cellHeight != g.cellHeight ||
+        surface.heights.size() != ground.heights.size())
+        return Error{"the screened surface does not have the ground's grid"};
+    const std::size_t cells = std::size_t(g.width) * std::size_t(g.height);
+    ViewshedResult result;
+    result.geometry = g;
+    result.visible.assign(cells, 0);
+    result.count.assign(cells, 0);
+    result.fraction.assign(cells, 0.0f);
+    const Terrain terrain{ground, surface};
+    if (options.method == ViewshedMethod::Exact) {
+        exactViewshed(terrain, targets, options, result);
+    } else {
+        for (const ViewshedTarget& target : targets)
+            sweepTarget(terrain, target, options, result);
+    }
+    for (std::size_t i = 0; i < cells; ++i)
+        if (terrain.noObserver(i, options))
+            result.fraction[i] = std::numeric_limits<float>::quiet_NaN();
     return result;
 }
 

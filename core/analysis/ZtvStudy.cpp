@@ -37,6 +37,46 @@ Result<std::string> demPathOf(const ProjectModel& model, const BlockReader& read
     return (path.is_absolute() ? path : (folder / path).lexically_normal()).string();
 }
 
+std::string projectRelative(const ProjectModel& model, const std::string& file) {
+    const std::filesystem::path path(file);
+    const std::filesystem::path folder =
+        model.file.has_parent_path() ? model.file.parent_path() : std::filesystem::path(".");
+    return (path.is_absolute() ? path : (folder / path).lexically_normal()).string();
+}
+
+// `screening`: features sources are building footprints, raster sources canopy heights.
+Status readScreens(const ProjectModel& model, const BlockReader& reader, ZtvStudy& study) {
+    const Value* screening = reader.block().find("screening") ? reader.value("screening") : nullptr;
+    const ValueList* list = screening ? screening->get<ValueList>() : nullptr;
+    if (list == nullptr)
+        return Status::success();
+    const std::string attribute = reader.string("screen_height_attribute", "height");
+    for (const Value& item : *list) {
+        const Reference* reference = item.get<Reference>();
+        const Block* source = reference ? model.findSource(reference->name) : nullptr;
+        const std::string where = item.location.toString() + ": ztv '" + study.name + "': ";
+        if (source == nullptr)
+            return Error{where + "a screen must be a source"};
+        const BlockReader sourceReader(*source,
+                                       SchemaRegistry::builtin().find("source", source->kind));
+        ScreenLayer layer;
+        if (source->kind == "features") {
+            layer.kind = ScreenLayer::Kind::Buildings;
+            layer.layer = sourceReader.string("layer", "");
+            layer.heightAttribute = attribute;
+        } else if (source->kind == "raster") {
+            layer.kind = ScreenLayer::Kind::Canopy;
+        } else {
+            return Error{where + "'" + reference->name + "' is a " + source->kind +
+                         " source; a screen is a features source (building footprints with a "
+                         "height) or a raster source (canopy height)"};
+        }
+        layer.path = projectRelative(model, sourceReader.string("file"));
+        study.screens.push_back(layer);
+    }
+    return Status::success();
+}
+
 // The analysis grid: `extent` (default: the DEM) snapped to whole cells of `resolution`.
 Result<GridGeometry> gridOf(const BlockReader& reader, const RasterInfo& dem) {
     const GridGeometry& d = dem.geometry;
@@ -141,6 +181,8 @@ Result<ZtvStudy> planZtv(const ProjectModel& model, const Block& block) {
     study.options.observerHeight = reader.optionalNumber("observer_height").value_or(2.0);
     study.options.curvature = reader.boolean("curvature", true);
     study.options.refraction = reader.optionalNumber("refraction").value_or(0.13);
+    if (Status ok = readScreens(model, reader, study); !ok)
+        return ok.error();
     study.output = reader.string("output", "out/{name}.tif");
     for (std::size_t at; (at = study.output.find("{name}")) != std::string::npos;)
         study.output.replace(at, 6, study.name);

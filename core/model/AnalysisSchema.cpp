@@ -73,6 +73,22 @@ KindSchema ztvBlock() {
     k.data = Quantity{0.13, Dimension::None};
     refraction.defaultValue = k;
 
+    AttributeSchema screening = attribute(
+        "screening", ValueType::List,
+        "Screens for a screened ZTV, added to the bare earth as a surface model: `features` "
+        "sources of building footprints (polygons with a numeric height attribute in metres, "
+        "`screen_height_attribute`) and `raster` sources of canopy height (metres above the "
+        "ground, the DEM's CRS). Observers stand on the ground; a cell whose screen is at "
+        "least the observer height tall holds no observer (no data). Empty: bare earth.");
+    screening.element = ValueType::Reference;
+    screening.target = "source";
+    AttributeSchema heightAttribute =
+        attribute("screen_height_attribute", ValueType::String,
+                  "The attribute of the building footprints that holds their height in metres.");
+    Value heightName;
+    heightName.data = std::string("height");
+    heightAttribute.defaultValue = heightName;
+
     AttributeSchema output = attribute(
         "output", ValueType::String,
         "GeoTIFF written by `sylva analyse` (relative to --out, default the current folder; "
@@ -86,14 +102,15 @@ KindSchema ztvBlock() {
         "ztv",
         "",
         PortType::None,
-        "A bare-earth zone of theoretical visibility: for each cell of the extent, are the "
-        "targets visible from an observer standing there (exact line of sight over the "
-        "DEM, with Earth curvature and refraction; docs/analysis.md).",
+        "A zone of theoretical visibility, bare earth or screened by buildings and canopy: "
+        "for each cell of the extent, are the targets visible from an observer standing "
+        "there (line of sight over the DEM, with Earth curvature and refraction; "
+        "docs/analysis.md).",
         {elevation, targets,
          length("observer_height", 2.0, 0.01, "Eye height above the ground at every cell."), extent,
          length("resolution", std::nullopt, 1.0,
                 "Cell size of the analysis grid; the raster's cell size when absent."),
-         curvature, refraction, output}};
+         curvature, refraction, screening, heightAttribute, output}};
 }
 
 }  // namespace

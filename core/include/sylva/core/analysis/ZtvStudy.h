@@ -6,13 +6,15 @@
 // Failures are user errors, returned as Result errors that start with the attribute's
 // file:line:col and the block ("p.sylva:12:5: ztv 'mast': "): an elevation that is not a
 // raster file, a DEM that is not projected, an extent that is malformed or reaches outside
-// the DEM, a grid of more than kMaxCells cells, a target outside the extent.
+// the DEM, a grid of more than kMaxCells cells, a target outside the extent, a screen
+// that is neither a features source nor a raster file.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "sylva/core/analysis/ElevationGrid.h"
+#include "sylva/core/analysis/ScreeningSurface.h"
 #include "sylva/core/analysis/Viewshed.h"
 #include "sylva/core/base/Result.h"
 #include "sylva/core/model/ProjectModel.h"
@@ -27,6 +29,7 @@ struct ZtvStudy {
     std::vector<ViewshedTarget> targets;
     ViewshedOptions options;
     std::string output;  // `output` with {name} replaced, relative to the output folder
+    std::vector<ScreenLayer> screens;  // `screening`; empty: the bare-earth ZTV
 
     static constexpr double kMaxCells = 25.0e6;
 };
