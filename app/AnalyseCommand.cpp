@@ -1,12 +1,15 @@
-// `sylva analyse PROJECT [--only NAME] [--out DIR] [--json] [-D name=value]
-// [--set block.attr=value]`: evaluates the project's analysis blocks (ztv) and writes
-// their GeoTIFFs and styled PNG maps (core/analysis; the map is the GeoTIFF's path with
-// the extension .png). Every selected block is planned against its DEM first,
-// so a located error in any of them stops the command before a file is written; each
-// file is written atomically, and a study whose GeoTIFF fails leaves no map either. Progress goes
-// to stderr; --json prints one summary per block on stdout (name, output, cells, visible cells and
-// share, targets, seconds).
+// `sylva analyse PROJECT [--only NAME] [--out DIR] [--json] [--force] [-D name=value]
+// [--set block.attr=value]`: evaluates the project's analysis blocks (ztv, shadow_study)
+// and writes their GeoTIFFs and PNG maps (core/analysis; a ztv's map is the GeoTIFF's
+// path with the extension .png; a shadow study writes a folder per block). --force lifts
+// the grid's cell limit (ZtvStudy::kMaxCells, ShadowStudy::kMaxCells). Every selected block is
+// planned against its DEM first, so a located error in any of them stops the command before a file
+// is written; each file is written atomically, and a study whose GeoTIFF fails leaves no map
+// either. Progress goes to stderr; --json prints one summary per block on stdout (name, output,
+// cells, visible cells and share, targets, seconds).
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -15,7 +18,10 @@
 #include "CommandLine.h"
 #include "Commands.h"
 #include "ProjectSession.h"
+#include "sylva/core/analysis/GridGeoTiff.h"
 #include "sylva/core/analysis/ScreeningSurface.h"
+#include "sylva/core/analysis/ShadowMap.h"
+#include "sylva/core/analysis/ShadowStudy.h"
 #include "sylva/core/analysis/Viewshed.h"
 #include "sylva/core/analysis/ZtvMap.h"
 #include "sylva/core/analysis/ZtvStudy.h"
@@ -27,20 +33,22 @@ namespace sylva::app {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: sylva analyse PROJECT [--only NAME] [--out DIR] [--json] [-D name=value] "
+    "usage: sylva analyse PROJECT [--only NAME] [--out DIR] [--json] [--force] [-D name=value] "
     "[--set block.attr=value]";
 
-// The ztv blocks to run: all, or the one --only names (nullopt after reporting).
+// The analysis blocks (ztv, shadow_study) to run: all, or the one --only names
+// (nullopt after reporting).
 std::optional<std::vector<const Block*>> selectBlocks(const ProjectModel& model,
                                                       const std::optional<std::string>& only) {
     std::vector<const Block*> blocks;
-    for (const Block& block : model.ztvs)
-        if (!only || block.name == *only)
-            blocks.push_back(&block);
-    if (only && blocks.empty()) {
-        std::string names;
-        for (const Block& block : model.ztvs)
+    std::string names;
+    for (const std::vector<Block>* kind : {&model.ztvs, &model.shadowStudies})
+        for (const Block& block : *kind) {
+            if (!only || block.name == *only)
+                blocks.push_back(&block);
             names += (names.empty() ? "" : ", ") + block.name;
+        }
+    if (only && blocks.empty()) {
         reportError("--only " + *only + ": the project has no ztv block of that name" +
                     (names.empty() ? std::string(" (it has none)") : " (it has: " + names + ")"));
         return std::nullopt;
@@ -48,6 +56,121 @@ std::optional<std::vector<const Block*>> selectBlocks(const ProjectModel& model,
     if (blocks.empty())
         reportError(model.file.string() + ": the project has no ztv block");
     return blocks.empty() ? std::nullopt : std::optional(blocks);
+}
+
+// The screens of a study as heights above the ground per cell (empty: none).
+std::optional<std::vector<float>> screenHeights(const std::string& what, const ElevationGrid& grid,
+                                                const std::vector<ScreenLayer>& screens) {
+    if (screens.empty())
+        return std::vector<float>();
+    auto surface = buildScreeningSurface(grid, screens);
+    if (!surface) {
+        reportError(what + ": " + surface.error().message);
+        return std::nullopt;
+    }
+    std::vector<float> heights(grid.heights.size());
+    for (std::size_t i = 0; i < heights.size(); ++i)
+        heights[i] =
+            std::isnan(grid.heights[i]) ? 0.0f : surface->surface.heights[i] - grid.heights[i];
+    return heights;
+}
+
+// Writes one date of a shadow study: the sun-hours GeoTIFF, a PNG per frame with the sun
+// up and the contact sheet; the paths written go to `written`. False after reporting.
+bool writeShadowDay(const ShadowStudy& study, const ElevationGrid& grid,
+                    const std::vector<float>& screens, const ShadowDay& day,
+                    const std::filesystem::path& folder,
+                    std::vector<std::filesystem::path>& written) {
+    const std::string what = "shadow_study '" + study.name + "'";
+    const std::filesystem::path tif = folder / ("sun_hours_" + day.date + ".tif");
+    const GridBand band{"sun_hours", &day.sunHours};
+    if (Status ok = writeGridGeoTiff(tif, study.grid, std::span(&band, 1), study.crsWkt); !ok) {
+        reportError(what + ": " + ok.error().message);
+        return false;
+    }
+    written.push_back(tif);
+    std::vector<RgbaImage> frames;
+    std::vector<std::string> captions;
+    const int scale = shadowFrameScale(study.grid);
+    for (const ShadowFrame& frame : day.frames) {
+        if (!(frame.elevation > 0.0))
+            continue;
+        RgbaImage image = drawShadowFrame(grid, screens, frame, day.date, scale);
+        std::string stamp = frame.label;
+        stamp.erase(std::remove(stamp.begin(), stamp.end(), ':'), stamp.end());
+        const std::filesystem::path png = folder / ("shadow_" + day.date + "_" + stamp + ".png");
+        if (Status ok = writeShadowImage(png, image); !ok) {
+            reportError(what + ": " + ok.error().message);
+            return false;
+        }
+        written.push_back(png);
+        frames.push_back(std::move(image));
+        captions.push_back(frame.label);
+    }
+    const std::filesystem::path sheet = folder / ("contact_" + day.date + ".png");
+    if (Status ok = writeShadowImage(sheet, drawContactSheet(frames, captions, 4, 240)); !ok) {
+        reportError(what + ": " + ok.error().message);
+        return false;
+    }
+    written.push_back(sheet);
+    return true;
+}
+
+// Computes and writes one shadow study; the summary for --json, or nullopt after
+// reporting (and removing what it had written).
+std::optional<nlohmann::ordered_json> runShadowStudy(const ShadowStudy& study,
+                                                     const std::filesystem::path& outFolder) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::string what = "shadow_study '" + study.name + "'";
+    auto grid = readElevationGrid(study.demPath, study.grid);
+    if (!grid) {
+        reportError(what + ": " + grid.error().message);
+        return std::nullopt;
+    }
+    auto screens = screenHeights(what, *grid, study.screens);
+    if (!screens)
+        return std::nullopt;
+    const ShadowCaster caster(*grid, *screens);
+    const std::filesystem::path folder = outFolder / study.output;
+    std::error_code error;
+    std::filesystem::create_directories(folder, error);
+    std::vector<std::filesystem::path> written;
+    nlohmann::ordered_json dates = nlohmann::ordered_json::array();
+    for (const std::string& date : study.dates) {
+        std::fprintf(stderr, "%s: %s, %d x %d cells of %.1f m\n", what.c_str(), date.c_str(),
+                     study.grid.width, study.grid.height, study.grid.cellWidth);
+        auto day = computeShadowDay(caster, study, date);
+        if (!day || !writeShadowDay(study, *grid, *screens, *day, folder, written)) {
+            if (!day)
+                reportError(what + ": " + day.error().message);
+            for (const std::filesystem::path& path : written)
+                std::filesystem::remove(path, error);  // nothing half-written
+            return std::nullopt;
+        }
+        double sum = 0.0;
+        std::size_t valid = 0;
+        for (float h : day->sunHours)
+            if (!std::isnan(h)) {
+                sum += h;
+                ++valid;
+            }
+        dates.push_back({{"date", date},
+                         {"frames", day->frames.size()},
+                         {"mean_sun_hours", valid > 0 ? sum / double(valid) : 0.0}});
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "%s: wrote %zu files to %s (%.2f s)\n", what.c_str(), written.size(),
+                 folder.string().c_str(), seconds);
+    nlohmann::ordered_json summary;
+    summary["name"] = study.name;
+    summary["kind"] = "shadow_study";
+    summary["output"] = folder.string();
+    summary["cells"] = std::size_t(study.grid.width) * std::size_t(study.grid.height);
+    summary["dates"] = std::move(dates);
+    summary["files"] = written.size();
+    summary["seconds"] = seconds;
+    return summary;
 }
 
 // Computes and writes one study; the summary for --json, or nullopt after reporting.
@@ -102,6 +225,7 @@ std::optional<nlohmann::ordered_json> runStudy(const ZtvStudy& study,
                  seconds);
     nlohmann::ordered_json summary;
     summary["name"] = study.name;
+    summary["kind"] = "ztv";
     summary["output"] = path.string();
     summary["map"] = mapPath.string();
     summary["cells"] = result->cells();
@@ -122,7 +246,8 @@ int runAnalyse(const std::vector<std::string>& originalArguments) {
     std::string setError;
     auto sets = extractSets(arguments, setError);
     const ParsedCommandLine command = parseCommandLine(
-        arguments, {{"help", false}, {"json", false}, {"only", true}, {"out", true}});
+        arguments,
+        {{"help", false}, {"json", false}, {"force", false}, {"only", true}, {"out", true}});
     if (command.has("help")) {
         std::puts(kUsage);
         return 0;
@@ -142,13 +267,24 @@ int runAnalyse(const std::vector<std::string>& originalArguments) {
     if (!blocks)
         return 1;
     std::vector<ZtvStudy> studies;
+    std::vector<ShadowStudy> shadowStudies;
     bool failed = false;
+    const bool force = command.has("force");
     for (const Block* block : *blocks) {
-        auto study = planZtv(*loaded.model, *block);
-        if (study) {
-            studies.push_back(std::move(*study));
+        Status planned = Status::success();
+        if (block->keyword == "shadow_study") {
+            auto study = planShadowStudy(*loaded.model, *block, force);
+            planned = study ? Status::success() : Status(study.error());
+            if (study)
+                shadowStudies.push_back(std::move(*study));
         } else {
-            std::fprintf(stderr, "error: %s\n", study.error().message.c_str());
+            auto study = planZtv(*loaded.model, *block, force);
+            planned = study ? Status::success() : Status(study.error());
+            if (study)
+                studies.push_back(std::move(*study));
+        }
+        if (!planned) {
+            std::fprintf(stderr, "error: %s\n", planned.error().message.c_str());
             failed = true;
         }
     }
@@ -158,6 +294,12 @@ int runAnalyse(const std::vector<std::string>& originalArguments) {
     nlohmann::ordered_json summaries = nlohmann::ordered_json::array();
     for (const ZtvStudy& study : studies) {
         auto summary = runStudy(study, outFolder);
+        if (!summary)
+            return 1;
+        summaries.push_back(std::move(*summary));
+    }
+    for (const ShadowStudy& study : shadowStudies) {
+        auto summary = runShadowStudy(study, outFolder);
         if (!summary)
             return 1;
         summaries.push_back(std::move(*summary));

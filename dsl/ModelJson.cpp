@@ -109,6 +109,8 @@ std::string modelsToJson(const std::vector<ProjectModel>& models, int indent) {
         out["blends"] = toJson(model.blends);
         if (!model.ztvs.empty())
             out["ztvs"] = toJson(model.ztvs);
+        if (!model.shadowStudies.empty())
+            out["shadow_studies"] = toJson(model.shadowStudies);
         scenarios.push_back(std::move(out));
     }
     Json root;

@@ -352,6 +352,19 @@ double ringSpacing(double maxDistance) {
     return roundDistance(maxDistance / 6.0);
 }
 
+void drawNorthArrow(RgbaImage& image, int x, int y, int size, int fontScale) {
+    for (int row = 0; row < 2 * size; ++row) {
+        const int half = row / 3;
+        for (int col = x - half; col <= x + half; ++col)
+            if (col >= 0 && col < image.width && y + row >= 0 && y + row < image.height) {
+                std::uint8_t* p = image.at(col, y + row);
+                p[0] = p[1] = p[2] = 20;
+            }
+    }
+    BitmapFont::draw(image, x - BitmapFont::textWidth("N", fontScale) / 2, y + 2 * size + 2, "N",
+                     fontScale, kBlack.data(), kWhite.data());
+}
+
 ZtvMap drawZtvMap(const ElevationGrid& grid, const ViewshedResult& result,
                   std::span<const ViewshedTarget> targets, const ZtvMapOptions& options) {
     const GridGeometry& g = grid.geometry;
@@ -379,7 +392,12 @@ ZtvMap drawZtvMap(const ElevationGrid& grid, const ViewshedResult& result,
         legend = {!right, !bottom};
         bar = {!right, bottom};
         map.layout.ringSpacing = ringSpacing(farthestCorner(g, targets[0]));
-        drawRingLines(map.image, frame, targets[0], map.layout.ringSpacing);
+        for (const ViewshedTarget& target : targets)  // the same spacing around each
+            drawRingLines(map.image, frame, target, map.layout.ringSpacing);
+        // The north arrow in the free corner on the target's side, away from the bar.
+        const int arrow = 10 * fontScale;
+        drawNorthArrow(map.image, right ? map.image.width - 3 * arrow : 2 * arrow,
+                       bottom ? arrow : map.image.height - 5 * arrow, arrow, fontScale);
     }
     for (std::size_t i = 0; i < targets.size(); ++i) {
         drawTarget(map.image, frame, targets[i], 4 * fontScale);

@@ -113,10 +113,70 @@ KindSchema ztvBlock() {
          curvature, refraction, screening, heightAttribute, output}};
 }
 
+AttributeSchema dateTimeList(std::string name, std::string doc) {
+    AttributeSchema a = attribute(std::move(name), ValueType::List, std::move(doc));
+    a.element = ValueType::DateTime;
+    return a;
+}
+
+AttributeSchema clockTime(std::string name, std::string doc) {
+    return attribute(std::move(name), ValueType::DateTime, std::move(doc));
+}
+
+AttributeSchema plainNumber(std::string name, double minimum, double maximum,
+                            std::optional<double> defaultValue, std::string doc) {
+    AttributeSchema a = attribute(std::move(name), ValueType::Number, std::move(doc));
+    a.minimum = minimum;
+    a.maximum = maximum;
+    if (defaultValue) {
+        Value v;
+        v.data = Quantity{*defaultValue, Dimension::None};
+        a.defaultValue = v;
+    }
+    return a;
+}
+
+KindSchema shadowStudyBlock() {
+    const KindSchema ztv = ztvBlock();
+    AttributeSchema dates = dateTimeList(
+        "dates", "The days to study (2024-03-20, 2024-06-21 ...), local days at `utc_offset`.");
+    dates.required = true;
+    AttributeSchema output = attribute(
+        "output", ValueType::String,
+        "Folder written by `sylva analyse` (relative to --out; {name} is the block's name): "
+        "per date sun_hours_{date}.tif (hours of direct sun, Float32, DEFLATE, overviews), "
+        "shadow_{date}_{HHMM}.png per frame and contact_{date}.png.");
+    Value path;
+    path.data = std::string("out/{name}");
+    output.defaultValue = path;
+    std::vector<AttributeSchema> attributes = {*ztv.find("elevation"), dates};
+    for (const char* shared : {"extent", "resolution", "screening", "screen_height_attribute"})
+        attributes.push_back(*ztv.find(shared));
+    attributes.push_back(clockTime("from",
+                                   "Start of the day window, local clock time (06:00:00); "
+                                   "midnight when absent."));
+    attributes.push_back(
+        clockTime("to",
+                  "End of the day window, local clock time (18:00:00); midnight (24:00) "
+                  "when absent."));
+    attributes.push_back(
+        plainNumber("step_minutes", 1.0, 720.0, 60.0, "Minutes between the frames of the window."));
+    attributes.push_back(plainNumber("utc_offset", -14.0, 14.0, std::nullopt,
+                                     "Hours of local clock time ahead of UTC (-3 in Olinda); the "
+                                     "site's longitude / 15° rounded when absent."));
+    attributes.push_back(output);
+    return {"shadow_study", "", PortType::None,
+            "A sun and shadow study over the DEM and the screens (buildings, canopy): for each "
+            "date, shadow maps at every step of the day window and the hours of direct sun per "
+            "cell, by ray casting along the NOAA solar direction (docs/analysis.md).",
+            std::move(attributes)};
+}
+
 }  // namespace
 
 void addAnalysisSchema(SchemaRegistry& registry) {
     registry.add(ztvBlock());
+    registry.add(shadowStudyBlock());
 }
 
 }  // namespace sylva

@@ -195,6 +195,74 @@ expect_rc 1
 expect_stderr "--only mats: the project has no ztv block of that name (it has: mast)"
 end
 
+# A building footprint (UTM 25S) west of the hill, 30 m high, for the screened ZTV and
+# the shadow study.
+cat >"$SCRATCH/town.geojson" <<'JSON'
+{"type":"FeatureCollection","crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32725"}},
+ "features":[{"type":"Feature","properties":{"height":30},"geometry":{"type":"Polygon",
+ "coordinates":[[[290500,9115600],[290620,9115600],[290620,9115900],[290500,9115900],[290500,9115600]]]}}]}
+JSON
+project screened 'source town : features { file = "town.geojson" }
+ztv mast {
+    elevation = @dem
+    targets = [{ position = [290915m, 9115735m], height = 40m }]
+    extent = [290150m, 9115300m, 291350m, 9116380m]
+    screening = [@town]
+    output = "out/{name}.tif"
+}
+shadow_study sun {
+    elevation = @dem
+    extent = [290300m, 9115400m, 290900m, 9116000m]
+    resolution = 10m
+    screening = [@town]
+    dates = [2024-06-21]
+    from = 09:00:00
+    to = 15:00:00
+    step_minutes = 120
+    utc_offset = -3
+    output = "out/{name}"
+}
+project { crs = "EPSG:32725" }'
+
+begin "screened ztv and shadow study: buildings block, files georeferenced"
+rm -rf "$SCRATCH/out"
+(cd "$SCRATCH" && "$SYLVA" analyse screened.sylva --json >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 0
+expect_stdout '"screened": true'
+expect_stdout '"building_cells": 40'
+expect_stdout '"kind": "shadow_study"'
+expect_stdout '"frames": 4'
+tif=$SCRATCH/out/sun/sun_hours_2024-06-21.tif
+if [ -f "$tif" ]; then
+    info=$(gdalinfo "$tif")
+    grep -qF "Size is 60, 60" <<<"$info" || fail "size: $(grep 'Size is' <<<"$info")"
+    grep -qF 'ID["EPSG",32725]' <<<"$info" || fail "CRS is not EPSG:32725"
+    grep -qF "COMPRESSION=DEFLATE" <<<"$info" || fail "not DEFLATE-compressed"
+    grep -qF "Description = sun_hours" <<<"$info" || fail "no band 'sun_hours'"
+    grep -qF "Overviews: 30x30" <<<"$info" || fail "no overviews"
+    # Inside the footprint (the roof) the sun shines all 6 hours.
+    value=$(gdallocationinfo -valonly "$tif" 25 25)
+    [ "$value" = "6" ] || fail "the roof gets '$value' h, not 6"
+else
+    fail "no $tif"
+fi
+[ "$(find "$SCRATCH/out/sun" -name 'shadow_2024-06-21_*.png' | wc -l)" -eq 4 ] ||
+    fail "not 4 frames: $(ls "$SCRATCH/out/sun")"
+[ -f "$SCRATCH/out/sun/contact_2024-06-21.png" ] || fail "no contact sheet"
+end
+
+project baddate 'shadow_study sun {
+    elevation = @dem
+    dates = [2024-06-21T10:00:00]
+}'
+begin "a shadow study date with a time -> located error, nothing written"
+rm -rf "$SCRATCH/out"
+(cd "$SCRATCH" && "$SYLVA" analyse baddate.sylva >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 1
+expect_stderr "baddate.sylva:5:14: shadow_study 'sun': a date is a plain day"
+expect_nothing_written
+end
+
 # `sylva bench analysis --json` (needs the Olinda DEM of scripts/fetch-samples): exactly
 # the five keys of issue 19, in order.
 REPO=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)

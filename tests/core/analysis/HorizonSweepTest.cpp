@@ -8,7 +8,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -203,36 +202,6 @@ TEST(HorizonSweep, OlindaEqualsExactMethod) {
     std::cout << "sweep horizon error, Olinda 30 m: max " << figures.maxMetres << " m, 99.9 % "
               << figures.p999 << " m, visibility mismatches without refinement "
               << figures.mismatches << " of " << grid->heights.size() << "\n";
-    for (const auto& [lookback, margin] : {std::pair{1, 0.0},
-                                           {2, 0.0},
-                                           {4, 0.0},
-                                           {8, 0.0},
-                                           {16, 0.0},
-                                           {4, 0.5},
-                                           {4, 1.0},
-                                           {8, 0.5},
-                                           {8, 1.0}}) {
-        HorizonSweepInput in = input;
-        in.refineMargin = margin;
-        in.lookback = lookback;
-        const auto start = std::chrono::steady_clock::now();
-        const HorizonSweepResult sweep = sweepHorizons(*grid, in);
-        const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        std::size_t wrong = 0;
-        for (int r = 0; r < g.height; ++r)
-            for (int c = 0; c < g.width; ++c) {
-                const double exact = exactHorizon(*grid, in, c, r);
-                const double d = std::hypot((c - in.col) * 30.0, (r - in.row) * 30.0);
-                const double rise =
-                    grid->at(c, r) + in.observerHeight - d * d * in.sagFactor - in.top;
-                wrong +=
-                    (d == 0.0 || rise - exact * d >= 0.0) !=
-                    (sweep.visible[std::size_t(r) * std::size_t(g.width) + std::size_t(c)] == 1);
-            }
-        std::cout << "lookback " << lookback << ", margin " << margin << " m: " << seconds * 1e3
-                  << " ms, refined " << sweep.refinedCells << ", mismatches " << wrong << "\n";
-    }
     const std::vector<ViewshedTarget> targets = {{g.centreX(100), g.centreY(120), 120.0},
                                                  {g.centreX(250.5), g.centreY(40.2), 60.0}};
     expectSameViewshed(*grid, targets, "Olinda 30 m", INFINITY, 0);

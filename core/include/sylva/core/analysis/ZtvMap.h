@@ -6,7 +6,9 @@
 //   - the ZTV colours: cells seen by k ≥ 1 targets get ztvCountColour(k, n) blended over
 //     the relief with alpha kZtvAlpha (cells that see none stay grey); no-data cells are
 //     hatched dark grey / light grey;
-//   - distance rings around the first target every ringSpacing(...) metres;
+//   - distance rings around every target every ringSpacing(...) metres (the spacing
+//     chosen for the first target);
+//   - a north arrow in the free corner on the first target's side;
 //   - a marker (black triangle, white rim) at every target;
 //   - a legend in the corner opposite the first target (the swatch of each count as it
 //     looks on flat ground, no data, the ring spacing, observer height, curvature and
@@ -49,6 +51,10 @@ inline constexpr std::array<std::uint8_t, 3> kZtvRingColour = {20, 70, 160};
 // grid or without data take the centre's height. `zFactor` multiplies heights.
 std::vector<float> hillshade(const ElevationGrid& grid, double azimuthDeg = 315.0,
                              double altitudeDeg = 45.0, double zFactor = 1.0);
+
+// A north arrow: a dark triangle pointing up, its tip at (x, y), `size` px wide at the
+// base and 2·size tall, an "N" under it (BitmapFont at fontScale, on white).
+void drawNorthArrow(RgbaImage& image, int x, int y, int size, int fontScale);
 
 // The opaque colour (sRGB) of cells seen by `count` of `targets` targets, 1 ≤ count ≤
 // targets: a sequential yellow–orange–red ramp (ColorBrewer YlOrRd), one orange for a

@@ -34,6 +34,7 @@ struct ZtvStudy {
     static constexpr double kMaxCells = 25.0e6;
 };
 
-Result<ZtvStudy> planZtv(const ProjectModel& model, const Block& block);
+// force: no limit on the number of cells (sylva analyse --force).
+Result<ZtvStudy> planZtv(const ProjectModel& model, const Block& block, bool force = false);
 
 }  // namespace sylva

@@ -51,10 +51,11 @@ struct ProjectModel {
     std::vector<Block> scenarios;
     std::vector<Block> cameras;
     std::vector<Block> views;
-    std::vector<Block> compares;  // keyword "compare": two scenarios side by side
-    std::vector<Block> blends;    // keyword "blend": a mix of two scenarios
-    std::vector<Block> paths;     // keyword "path": camera animations
-    std::vector<Block> ztvs;      // keyword "ztv": zones of theoretical visibility (analyse)
+    std::vector<Block> compares;       // keyword "compare": two scenarios side by side
+    std::vector<Block> blends;         // keyword "blend": a mix of two scenarios
+    std::vector<Block> paths;          // keyword "path": camera animations
+    std::vector<Block> ztvs;           // keyword "ztv": zones of theoretical visibility (analyse)
+    std::vector<Block> shadowStudies;  // keyword "shadow_study": sun and shadow (analyse)
 
     const Block* findSource(std::string_view name) const { return findIn(sources, name); }
     const Block* findCamera(std::string_view name) const { return findIn(cameras, name); }

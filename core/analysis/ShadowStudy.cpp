@@ -1,0 +1,169 @@
+#include "sylva/core/analysis/ShadowStudy.h"
+
+#include <ogr_srs_api.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "StudyBlock.h"
+#include "sylva/core/geo/SolarPosition.h"
+#include "sylva/core/model/BlockReader.h"
+#include "sylva/core/scene/DateTime.h"
+#include "sylva/core/sources/GdalDatasetPool.h"
+
+namespace sylva {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Hours of a local clock time written "14:30:00".
+Result<double> clockHours(const BlockReader& reader, const char* attribute, double fallback) {
+    if (reader.block().find(attribute) == nullptr)
+        return fallback;
+    auto time = DateTime::parse(reader.string(attribute, ""));
+    if (!time || time->hasDate() || !time->hasTime())
+        return Error{reader.where(attribute) + "'" + attribute +
+                     "' must be a time of day (06:00:00)"};
+    auto midnight = DateTime::parse("1970-01-01T00:00:00+00:00");
+    auto seconds = midnight->withTimeOf(*time).unixSeconds();
+    if (!seconds)
+        return Error{reader.where(attribute) + seconds.error().message};
+    return *seconds / 3600.0;
+}
+
+Status readDates(const BlockReader& reader, ShadowStudy& study) {
+    const Value* dates = reader.value("dates");
+    const ValueList* list = dates ? dates->get<ValueList>() : nullptr;
+    if (list == nullptr || list->empty())
+        return Error{reader.where("dates") + "a shadow_study needs at least one date"};
+    for (const Value& item : *list) {
+        const std::string* text = item.get<std::string>();
+        auto date = text ? DateTime::parse(*text) : Result<DateTime>(Error{"not a date"});
+        if (!date || !date->hasDate() || date->hasTime())
+            return Error{item.location.toString() + ": shadow_study '" + study.name +
+                         "': a date is a plain day (2024-06-21)"};
+        study.dates.push_back(*text);
+    }
+    return Status::success();
+}
+
+// The site's centre in longitude/latitude (radians), for the sun's direction.
+Status siteCentre(const BlockReader& reader, ShadowStudy& study) {
+    OGRSpatialReferenceH grid = OSRNewSpatialReference(study.crsWkt.c_str());
+    OGRSpatialReferenceH wgs84 = OSRNewSpatialReference(nullptr);
+    OSRImportFromEPSG(wgs84, 4326);
+    OSRSetAxisMappingStrategy(grid, OAMS_TRADITIONAL_GIS_ORDER);
+    OSRSetAxisMappingStrategy(wgs84, OAMS_TRADITIONAL_GIS_ORDER);
+    OGRCoordinateTransformationH transform = OCTNewCoordinateTransformation(grid, wgs84);
+    double x = study.grid.originX + 0.5 * study.grid.width * study.grid.cellWidth;
+    double y = study.grid.originY - 0.5 * study.grid.height * study.grid.cellHeight;
+    const bool ok = transform != nullptr && OCTTransform(transform, 1, &x, &y, nullptr) != 0;
+    if (transform != nullptr)
+        OCTDestroyCoordinateTransformation(transform);
+    OSRDestroySpatialReference(grid);
+    OSRDestroySpatialReference(wgs84);
+    if (!ok)
+        return Error{reader.where("elevation") + "the DEM's CRS cannot be converted to lon/lat"};
+    study.longitude = x * kPi / 180.0;
+    study.latitude = y * kPi / 180.0;
+    return Status::success();
+}
+
+Status readWindow(const BlockReader& reader, ShadowStudy& study) {
+    auto start = clockHours(reader, "from", 0.0);
+    if (!start)
+        return start.error();
+    auto end = clockHours(reader, "to", 24.0);
+    if (!end)
+        return end.error();
+    study.dayStartHours = *start;
+    study.dayEndHours = *end == 0.0 ? 24.0 : *end;
+    if (!(study.dayEndHours > study.dayStartHours))
+        return Error{reader.where("to") + "the day window is empty ('to' must follow 'from')"};
+    study.stepMinutes = reader.optionalNumber("step_minutes").value_or(60.0);
+    const double frames = (study.dayEndHours - study.dayStartHours) * 60.0 / study.stepMinutes;
+    if (!(study.stepMinutes > 0.0) || frames > 1440.0)
+        return Error{reader.where("step_minutes") + "the step gives more than 1440 frames a day"};
+    study.utcOffsetHours = reader.optionalNumber("utc_offset")
+                               .value_or(std::round(study.longitude * 180.0 / kPi / 15.0));
+    return Status::success();
+}
+
+}  // namespace
+
+Result<ShadowStudy> planShadowStudy(const ProjectModel& model, const Block& block, bool force) {
+    const BlockReader reader(block, SchemaRegistry::builtin().find("shadow_study"));
+    ShadowStudy study;
+    study.name = block.name;
+    auto dem = demPathOf(model, reader);
+    if (!dem)
+        return dem.error();
+    study.demPath = *dem;
+    auto info = readRasterInfo(study.demPath);
+    if (!info)
+        return Error{reader.where("elevation") + info.error().message};
+    if (!info->projected)
+        return Error{reader.where("elevation") + study.demPath +
+                     ": the DEM needs a projected CRS in metres"};
+    study.crsWkt = info->crsWkt;
+    auto grid = gridOf(reader, *info, force ? 1e300 : ShadowStudy::kMaxCells);
+    if (!grid)
+        return grid.error();
+    study.grid = *grid;
+    const std::string what = "shadow_study '" + study.name + "'";
+    if (Status ok = readScreens(model, reader, what, study.screens); !ok)
+        return ok.error();
+    if (Status ok = readDates(reader, study); !ok)
+        return ok.error();
+    if (Status ok = siteCentre(reader, study); !ok)
+        return ok.error();
+    if (Status ok = readWindow(reader, study); !ok)
+        return ok.error();
+    study.output = reader.string("output", "out/{name}");
+    for (std::size_t at; (at = study.output.find("{name}")) != std::string::npos;)
+        study.output.replace(at, 6, study.name);
+    return study;
+}
+
+Result<ShadowDay> computeShadowDay(const ShadowCaster& caster, const ShadowStudy& study,
+                                   const std::string& date) {
+    auto day = DateTime::parse(date + "T00:00:00+00:00");
+    if (!day)
+        return day.error();
+    auto midnightUtc = day->unixSeconds();
+    if (!midnightUtc)
+        return midnightUtc.error();
+    ShadowDay out;
+    out.date = date;
+    const std::size_t cells = caster.ground().heights.size();
+    out.sunHours.assign(cells, 0.0f);
+    const double step = study.stepMinutes / 60.0;  // hours
+    const int count = int(std::floor((study.dayEndHours - study.dayStartHours) / step + 1e-9)) + 1;
+    for (int k = 0; k < count; ++k) {
+        const double local = study.dayStartHours + k * step;
+        ShadowFrame frame;
+        frame.unixSeconds = *midnightUtc + (local - study.utcOffsetHours) * 3600.0;
+        const SunDirection sun =
+            SolarPosition::seenFrom(frame.unixSeconds, study.latitude, study.longitude);
+        frame.azimuth = sun.azimuth;
+        frame.elevation = sun.elevation;
+        char label[16];
+        const int minutes = int(std::lround(local * 60.0));
+        std::snprintf(label, sizeof label, "%02d:%02d", minutes / 60, minutes % 60);
+        frame.label = label;
+        frame.lit = caster.sunlitCells(sun.azimuth, sun.elevation);
+        // Trapezoid weights: half a step at both ends of the window.
+        const double weight = (k == 0 || k == count - 1) && count > 1 ? 0.5 * step : step;
+        for (std::size_t i = 0; i < cells; ++i)
+            out.sunHours[i] += frame.lit[i] ? float(weight) : 0.0f;
+        out.frames.push_back(std::move(frame));
+    }
+    for (std::size_t i = 0; i < cells; ++i)
+        if (std::isnan(caster.ground().heights[i]))
+            out.sunHours[i] = std::numeric_limits<float>::quiet_NaN();
+    return out;
+}
+
+}  // namespace sylva

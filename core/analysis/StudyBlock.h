@@ -1,0 +1,36 @@
+// StudyBlock: what the analysis blocks (`ztv`, `shadow_study`) read alike from the
+// project: the DEM behind `elevation`, the grid from `extent` and `resolution`, the
+// screens of `screening`. Private to core/analysis. Errors start with the attribute's
+// file:line:col (BlockReader::where or the list item's location).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sylva/core/analysis/ElevationGrid.h"
+#include "sylva/core/analysis/ScreeningSurface.h"
+#include "sylva/core/base/Result.h"
+#include "sylva/core/model/BlockReader.h"
+#include "sylva/core/model/ProjectModel.h"
+
+namespace sylva {
+
+std::string formatMetres(double v);  // "12.5 m"
+
+// A project-relative file path made usable from the current folder.
+std::string projectRelative(const ProjectModel& model, const std::string& file);
+
+// The `elevation` reference: a raster source whose file is the DEM (its path).
+Result<std::string> demPathOf(const ProjectModel& model, const BlockReader& reader);
+
+// The analysis grid: `extent` (default: the DEM) snapped to whole cells of
+// `resolution` (default: the DEM's cell size); at most `maxCells` cells.
+Result<GridGeometry> gridOf(const BlockReader& reader, const RasterInfo& dem, double maxCells);
+
+// `screening`: features sources are building footprints (height attribute
+// `screen_height_attribute`), raster sources canopy heights. `what` names the block in
+// errors ("ztv 'mast'").
+Status readScreens(const ProjectModel& model, const BlockReader& reader, const std::string& what,
+                   std::vector<ScreenLayer>& screens);
+
+}  // namespace sylva

@@ -1,0 +1,67 @@
+// ShadowStudy: a `shadow_study` block of the project (core/model AnalysisSchema.cpp):
+// for each date, shadow maps at every time step of a day window and the hours of direct
+// sun per cell, on the DEM plus screens (buildings, canopy) as a surface model
+// (ShadowCaster). The sun's direction is the NOAA solar position (SolarPosition) seen
+// from the site's centre at each instant.
+//
+// Time: the dates are local days at `utcOffsetHours`; the window [dayStart, dayEnd]
+// (hours of local clock time) is sampled at dayStart, dayStart + step, ... ≤ dayEnd
+// (the frames). Hours of direct sun per cell integrate the lit samples by the
+// trapezoid rule over the window (a sample below the horizon counts as shadow).
+//
+// planShadowStudy failures are user errors that start with the attribute's
+// file:line:col and the block: those of the ztv (elevation, extent, resolution,
+// screening) and a date that is not a plain date, a window that is empty, a step that
+// does not divide into at most 1440 frames.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sylva/core/analysis/ElevationGrid.h"
+#include "sylva/core/analysis/ScreeningSurface.h"
+#include "sylva/core/analysis/ShadowCaster.h"
+#include "sylva/core/base/Result.h"
+#include "sylva/core/model/ProjectModel.h"
+
+namespace sylva {
+
+struct ShadowStudy {
+    std::string name;
+    std::string demPath;
+    GridGeometry grid;  // the DEM's CRS
+    std::string crsWkt;
+    std::vector<ScreenLayer> screens;
+    std::vector<std::string> dates;  // "2024-06-21"
+    double stepMinutes = 60.0;
+    double dayStartHours = 0.0, dayEndHours = 24.0;  // local clock time
+    double utcOffsetHours = 0.0;
+    double latitude = 0.0, longitude = 0.0;  // radians: the site's centre, for the sun
+    std::string output;                      // folder, {name} replaced
+
+    static constexpr double kMaxCells = 4.0e6;
+};
+
+// force: no limit on the number of cells (sylva analyse --force).
+Result<ShadowStudy> planShadowStudy(const ProjectModel& model, const Block& block,
+                                    bool force = false);
+
+struct ShadowFrame {
+    std::string label;                      // local clock time "08:30"
+    double unixSeconds = 0.0;               // UTC
+    double azimuth = 0.0, elevation = 0.0;  // the sun, radians
+    std::vector<std::uint8_t> lit;          // per cell, 1 = direct sun
+};
+
+struct ShadowDay {
+    std::string date;
+    std::vector<ShadowFrame> frames;
+    std::vector<float> sunHours;  // per cell, hours of direct sun in the window
+};
+
+// One date of the study. Fails when the date cannot be read.
+Result<ShadowDay> computeShadowDay(const ShadowCaster& caster, const ShadowStudy& study,
+                                   const std::string& date);
+
+}  // namespace sylva
