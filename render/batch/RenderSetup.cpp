@@ -1,6 +1,7 @@
 #include "sylva/render/batch/RenderSetup.h"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "sylva/core/geo/Ellipsoid.h"
@@ -33,8 +34,9 @@ Status readResolution(BlockReader& renderBlock, RenderSettings& settings) {
 Status readSamples(BlockReader& renderBlock, RenderSettings& settings) {
     const double samples = renderBlock.optionalNumber("samples").value_or(1.0);
     if (samples != std::floor(samples)) {
-        return Error{renderBlock.where("samples") + "samples must be a whole number, not " +
-                     std::to_string(samples)};
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", samples);
+        return Error{renderBlock.where("samples") + "samples must be a whole number, not " + text};
     }
     settings.samples = static_cast<int>(samples);
     return {};
