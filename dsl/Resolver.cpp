@@ -5,6 +5,8 @@
 #include "sylva/dsl/Resolver.h"
 
 #include <algorithm>
+#include <set>
+#include <string>
 #include <utility>
 
 #include "BlockChecker.h"
@@ -61,6 +63,9 @@ std::vector<ProjectModel> Resolver::resolve(const std::vector<ParsedUnit>& units
     addOmittedBlocks(model, path);
     collectParams(model);
     std::vector<ProjectModel> models = scenarioModels(std::move(model), scenarios);
+    if (!scenarios.empty()) {
+        reportUnusedSources(models);
+    }
     if (hasErrors(diagnostics_)) {
         return {};
     }
@@ -320,6 +325,59 @@ void Resolver::collectParams(ProjectModel& model) {
                                         declaration.location});
         }
         model.params.push_back(std::move(param));
+    }
+}
+
+namespace {
+
+// Adds the names of the sources `value` refers to (through lists and objects) to `used`.
+void collectSourceReferences(const Value& value, std::set<std::string>& used) {
+    if (const Reference* reference = value.get<Reference>()) {
+        if (reference->kind == "source") {
+            used.insert(reference->name);
+        }
+    } else if (const ValueList* list = value.get<ValueList>()) {
+        for (const Value& element : *list) {
+            collectSourceReferences(element, used);
+        }
+    } else if (const ValueObject* object = value.get<ValueObject>()) {
+        for (const auto& [field, element] : *object) {
+            collectSourceReferences(element, used);
+        }
+    }
+}
+
+}  // namespace
+
+// W0203 for a source of the project file itself (imported libraries may offer more than a
+// project takes) that no block of any scenario model refers to: not a scenario's layers,
+// not a view, analysis block or other source (a source naming only itself does not count).
+// Reported only when the project has scenarios: without one nothing is drawn at all.
+void Resolver::reportUnusedSources(const std::vector<ProjectModel>& models) {
+    std::set<std::string> used;
+    for (const ProjectModel& model : models) {
+        for (const std::vector<Block>* blocks :
+             {&model.sources, &model.scenarios, &model.cameras, &model.views, &model.compares,
+              &model.blends, &model.paths, &model.ztvs}) {
+            for (const Block& block : *blocks) {
+                std::set<std::string> referenced;
+                for (const Attribute& attribute : block.attributes) {
+                    collectSourceReferences(attribute.value, referenced);
+                }
+                if (block.keyword == "source") {
+                    referenced.erase(block.name);
+                }
+                used.insert(referenced.begin(), referenced.end());
+            }
+        }
+    }
+    for (const Declaration& declaration : names_->declarations()) {
+        if (declaration.keyword == "source" && declaration.schema != nullptr &&
+            declaration.scope.empty() && !used.count(declaration.name)) {
+            addWarning(diagnostics_, "W0203", "unused source '" + declaration.name + "'",
+                       declaration.location,
+                       "no scenario, view, analysis or other source refers to it");
+        }
     }
 }
 

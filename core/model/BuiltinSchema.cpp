@@ -405,8 +405,10 @@ KindSchema rasterizeSource() {
          number("point_radius", Dimension::Length, 5.0, 0.0, 1e6,
                 "Radius of point features in metres (instances: times their scale)."),
          number("minimum_texels", Dimension::None, 0.0, 0.0, 16.0,
-                "Lines and outlines are at least this many texels wide, so they stay visible in "
-                "coarse tiles (far views); 0: exactly their width in metres."),
+                "Lines and outlines narrower than this many texels are drawn that wide but "
+                "fainter (opacity = width / drawn width), so their ink stays metric at every "
+                "level: a 1 or 1.5 keeps thin lines continuous from afar without flooding coarse "
+                "levels; 0: exactly their width in metres."),
          simple("color", ValueType::Color, color(1.0f, 1.0f, 1.0f), "Fixed colour (sRGB)."),
          simple("color_attribute", ValueType::String, text(""),
                 "Attribute giving each feature's colour: a hex string, or a key of `colors`."),
@@ -612,6 +614,11 @@ KindSchema renderBlock() {
             PortType::None,
             "How images are rendered.",
             {resolution,
+             number("samples", Dimension::None, 1, 1, 16,
+                    "Anti-aliasing: samples per pixel (a whole number), each a render with the "
+                    "image shifted by a sub-pixel offset, averaged in linear light (4: the "
+                    "2 x 2 grid, as a twice larger image box-filtered down); costs about that "
+                    "many times the time of one image."),
              simple("sun", ValueType::Geo, sun,
                     "Subsolar point: where on Earth the sun stands at the zenith."),
              simple("atmosphere", ValueType::Bool, boolean(true),

@@ -1,5 +1,7 @@
 #include "sylva/render/batch/RenderSetup.h"
 
+#include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "sylva/core/geo/Ellipsoid.h"
@@ -28,6 +30,18 @@ Status readResolution(BlockReader& renderBlock, RenderSettings& settings) {
     return {};
 }
 
+// `samples = N` (the schema checked 1..16): a whole number of samples per pixel.
+Status readSamples(BlockReader& renderBlock, RenderSettings& settings) {
+    const double samples = renderBlock.optionalNumber("samples").value_or(1.0);
+    if (samples != std::floor(samples)) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", samples);
+        return Error{renderBlock.where("samples") + "samples must be a whole number, not " + text};
+    }
+    settings.samples = static_cast<int>(samples);
+    return {};
+}
+
 }  // namespace
 
 Result<RenderSetup> RenderSetup::fromModel(const ProjectModel& model, int overrideWidth,
@@ -39,6 +53,9 @@ Result<RenderSetup> RenderSetup::fromModel(const ProjectModel& model, int overri
         settings.width = overrideWidth;
         settings.height = overrideHeight;
     } else if (Status read = readResolution(renderBlock, settings); !read) {
+        return read.error();
+    }
+    if (Status read = readSamples(renderBlock, settings); !read) {
         return read.error();
     }
     const GeoPosition sun = renderBlock.geo("sun").value_or(GeoPosition{0.4, 0.35, std::nullopt});

@@ -8,6 +8,7 @@
 #include "EglContext.h"
 #include "GlfwContext.h"
 #include "OsMesaContext.h"
+#include "sylva/render/gl/GlRequirements.h"
 
 namespace sylva::render {
 namespace {
@@ -135,6 +136,9 @@ Status GlContext::loadGl(GlProcLoader loader) {
     if (major * 10 + minor < 45 || !core) {
         return Error{"got OpenGL " + std::to_string(major) + "." + std::to_string(minor) +
                      (core ? " core" : " compatibility") + ", need 4.5 core"};
+    }
+    if (Status features = checkGlFeatures(queryGlFeatures()); !features) {
+        return features.error();
     }
     gLoadedFor = this;
     glVersion_ = major * 10 + minor;

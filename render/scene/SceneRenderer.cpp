@@ -31,6 +31,11 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const ShaderLibrary
         return shading.error();
     }
     renderer->shading_ = std::move(shading.value());
+    Result<std::unique_ptr<SampleAccumulator>> accumulator = SampleAccumulator::create(library);
+    if (!accumulator) {
+        return accumulator.error();
+    }
+    renderer->accumulator_ = std::move(accumulator.value());
     return renderer;
 }
 
@@ -71,17 +76,9 @@ Status SceneRenderer::ensureTargets(int width, int height, bool linearOutput) {
     return Status::success();
 }
 
-Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& provider,
-                                    const Camera& camera, const RenderSettings& settings) {
-    if (settings.width < 1 || settings.height < 1 || settings.width > 16384 ||
-        settings.height > 16384) {
-        return Error{"image size " + std::to_string(settings.width) + "x" +
-                     std::to_string(settings.height) + " is outside 1..16384"};
-    }
-    if (Status status = ensureTargets(settings.width, settings.height, settings.linearOutput);
-        !status) {
-        return status.error();
-    }
+Result<LevelRange> SceneRenderer::prepareTerrain(const TerrainLayers& layers,
+                                                 TileProvider& provider, const Camera& camera,
+                                                 const RenderSettings& settings) {
     // Height above the terrain at the nadir, from the level that will be drawn there:
     // estimate with a coarse level first, then refine at the finest visible level.
     const ElevationQuery query(*layers.elevation, provider);
@@ -110,19 +107,41 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     }
     levels = terrain_->visibleLevels(camera, aboveTerrain, settings.height);
     statistics_.heightAboveTerrain = aboveTerrain;
+    return terrain_->update(layers, provider, camera, levels, std::nullopt, settings.waitForTiles);
+}
 
-    Result<LevelRange> ready =
-        terrain_->update(layers, provider, camera, levels, std::nullopt, settings.waitForTiles);
-    if (!ready) {
-        return ready.error();
+Result<std::vector<const InstanceBatch*>> SceneRenderer::streamVegetation(
+    const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
+    const RenderSettings& settings) {
+    statistics_.vegetationStream = {};
+    std::vector<const InstanceBatch*> batches = settings.instanceBatches;
+    if (layers.plants.empty()) {
+        return batches;
     }
-    levels = ready.value();
-    const auto start = std::chrono::steady_clock::now();
-    const double near = std::clamp(0.3 * aboveTerrain, 0.02, 1.0e4);
-    near_ = near;
-    const glm::dmat4 projection = SceneRenderer::projection(
-        camera.verticalFov, double(settings.width) / settings.height, near);
-    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    Result<std::vector<VegetationStreamLayer>> streamLayers = vegetationLayers(layers);
+    if (!streamLayers) {
+        return streamLayers.error();
+    }
+    VegetationStreamSettings stream;
+    stream.pixelAngle = 2.0 * std::tan(camera.verticalFov / 2) / settings.height;
+    stream.minimumPixels = settings.vegetation.minimumPixels;
+    stream.maximumDistance = settings.vegetation.maximumDistance;
+    stream.heightAboveGround = statistics_.heightAboveTerrain;
+    stream.wait = settings.waitForTiles;
+    Result<std::vector<const InstanceBatch*>> streamed = vegetationStream_.update(
+        streamLayers.value(), provider, camera, vegetation_->speciesLods(), stream);
+    if (!streamed) {
+        return streamed.error();
+    }
+    batches.insert(batches.end(), streamed.value().begin(), streamed.value().end());
+    statistics_.vegetationStream = vegetationStream_.statistics();
+    return batches;
+}
+
+void SceneRenderer::drawSample(const Camera& camera, const glm::dmat4& projection,
+                               const LevelRange& levels,
+                               const std::vector<const InstanceBatch*>& batches,
+                               const RenderSettings& settings) {
     gbuffer_.bind();
     gbuffer_.clearColor(0, glm::vec4(0.0f));
     gbuffer_.clearColor(1, glm::vec4(0.0f));
@@ -131,41 +150,14 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     terrain_->draw(camera, projection, levels, settings.ocean);
     glFinish();  // only to time the pass; the read-back below waits anyway
     const auto vegetationStart = std::chrono::steady_clock::now();
-    statistics_.terrainPassSeconds =
+    statistics_.terrainPassSeconds +=
         std::chrono::duration<double>(vegetationStart - terrainStart).count();
-    statistics_.vegetation = {};
-    statistics_.vegetationStream = {};
-    statistics_.vegetationPassSeconds = 0;
-    std::vector<const InstanceBatch*> batches = settings.instanceBatches;
-    if (!layers.plants.empty()) {
-        Result<std::vector<VegetationStreamLayer>> streamLayers = vegetationLayers(layers);
-        if (!streamLayers) {
-            Framebuffer::unbind();
-            glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
-            return streamLayers.error();
-        }
-        VegetationStreamSettings stream;
-        stream.pixelAngle = 2.0 * std::tan(camera.verticalFov / 2) / settings.height;
-        stream.minimumPixels = settings.vegetation.minimumPixels;
-        stream.maximumDistance = settings.vegetation.maximumDistance;
-        stream.heightAboveGround = aboveTerrain;
-        stream.wait = settings.waitForTiles;
-        Result<std::vector<const InstanceBatch*>> streamed = vegetationStream_.update(
-            streamLayers.value(), provider, camera, vegetation_->speciesLods(), stream);
-        if (!streamed) {
-            Framebuffer::unbind();
-            glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
-            return streamed.error();
-        }
-        batches.insert(batches.end(), streamed.value().begin(), streamed.value().end());
-        statistics_.vegetationStream = vegetationStream_.statistics();
-    }
     if (!batches.empty()) {
-        vegetation_->draw(batches, camera, projection, near, settings.width, settings.height,
+        vegetation_->draw(batches, camera, projection, near_, settings.width, settings.height,
                           settings.vegetation);
         glFinish();  // only to time the pass
         statistics_.vegetation = vegetation_->statistics();
-        statistics_.vegetationPassSeconds =
+        statistics_.vegetationPassSeconds +=
             std::chrono::duration<double>(std::chrono::steady_clock::now() - vegetationStart)
                 .count();
     }
@@ -173,7 +165,60 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     shading.sunDirection = settings.sunDirection;
     shading.atmosphere = settings.atmosphere;
     shading.exposure = settings.exposure;
-    shading_->run(gbuffer_, output_, camera, projection, near, shading);
+    shading_->run(gbuffer_, output_, camera, projection, near_, shading);
+}
+
+Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& provider,
+                                    const Camera& camera, const RenderSettings& settings) {
+    if (settings.width < 1 || settings.height < 1 || settings.width > 16384 ||
+        settings.height > 16384) {
+        return Error{"image size " + std::to_string(settings.width) + "x" +
+                     std::to_string(settings.height) + " is outside 1..16384"};
+    }
+    if (settings.samples < 1 || settings.samples > SampleAccumulator::kMaxSamples) {
+        return Error{"samples " + std::to_string(settings.samples) + " is outside 1.." +
+                     std::to_string(SampleAccumulator::kMaxSamples)};
+    }
+    if (Status status = ensureTargets(settings.width, settings.height, settings.linearOutput);
+        !status) {
+        return status.error();
+    }
+    Result<LevelRange> ready = prepareTerrain(layers, provider, camera, settings);
+    if (!ready) {
+        return ready.error();
+    }
+    const LevelRange levels = ready.value();
+    const auto start = std::chrono::steady_clock::now();
+    statistics_.vegetation = {};
+    statistics_.terrainPassSeconds = 0;
+    statistics_.vegetationPassSeconds = 0;
+    Result<std::vector<const InstanceBatch*>> batches =
+        streamVegetation(layers, provider, camera, settings);
+    if (!batches) {
+        return batches.error();
+    }
+    near_ = std::clamp(0.3 * statistics_.heightAboveTerrain, 0.02, 1.0e4);
+    const glm::dmat4 projection = SceneRenderer::projection(
+        camera.verticalFov, double(settings.width) / settings.height, near_);
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    if (settings.samples == 1) {
+        drawSample(camera, projection, levels, batches.value(), settings);
+    } else {
+        if (Status begun =
+                accumulator_->begin(settings.width, settings.height, settings.linearOutput);
+            !begun) {
+            glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+            return begun.error();
+        }
+        for (const glm::dvec2& offset : SampleAccumulator::pattern(settings.samples)) {
+            drawSample(
+                camera,
+                SampleAccumulator::shifted(projection, offset, settings.width, settings.height),
+                levels, batches.value(), settings);
+            accumulator_->add(output_, 1.0f / float(settings.samples));
+        }
+        accumulator_->resolve(output_);
+    }
     Image image;
     image.width = settings.width;
     image.height = settings.height;

@@ -142,10 +142,16 @@ Result<glm::vec3> featureColour(const RasterizeParameters& parameters, const Fea
     return Error{where + ": '" + value + "' is not a hex colour such as #1a8c3f"};
 }
 
-// The stroke widths in metres, at least `minimum_texels` wide at the tile's centre row.
+// The stroke widths in metres, at least `minimum_texels` wide at the tile's centre row, and
+// the opacity that keeps a widened stroke's ink at its metric area: a 150 m border drawn
+// 1.5 texels (1.8 km) wide on a 1.2 km-texel tile covers its texels at 150 / 1800, so
+// coverage summed over a coarse tile is still the line's length × 150 m and the line fades
+// with distance instead of flooding the coarse levels.
 struct StrokeWidths {
     double outline = 0.0;
     double line = 0.0;
+    float outlineOpacity = 1.0f;  // metric width / drawn width, in (0, 1]
+    float lineOpacity = 1.0f;
 };
 
 StrokeWidths strokeWidths(const RasterizeParameters& parameters,
@@ -155,6 +161,12 @@ StrokeWidths strokeWidths(const RasterizeParameters& parameters,
     StrokeWidths widths;
     widths.outline = parameters.outline > 0.0 ? std::max(parameters.outline, minimumWidth) : 0.0;
     widths.line = parameters.lineWidth > 0.0 ? std::max(parameters.lineWidth, minimumWidth) : 0.0;
+    if (widths.outline > 0.0) {
+        widths.outlineOpacity = float(parameters.outline / widths.outline);
+    }
+    if (widths.line > 0.0) {
+        widths.lineOpacity = float(parameters.lineWidth / widths.line);
+    }
     return widths;
 }
 
@@ -173,12 +185,17 @@ void featureCoverage(const RasterizeParameters& parameters, const CoverageRaster
                 strokes.assign(texels, 0.0f);
                 rasterizer.strokeLines(feature.parts, hit.longitudeShift, widths.outline, strokes);
                 for (std::size_t i = 0; i < texels; ++i) {
-                    coverage[i] = std::max(coverage[i], strokes[i]);
+                    coverage[i] = std::max(coverage[i], strokes[i] * widths.outlineOpacity);
                 }
             }
             break;
         case GeometryKind::Line:
             rasterizer.strokeLines(feature.parts, hit.longitudeShift, widths.line, coverage);
+            if (widths.lineOpacity < 1.0f) {
+                for (float& c : coverage) {
+                    c *= widths.lineOpacity;
+                }
+            }
             break;
         case GeometryKind::Point:
             for (const glm::dvec2& p : feature.parts.front()) {

@@ -84,6 +84,52 @@ glm::vec3 HypsometricSource::colorAt(double height, double slope) const {
     return glm::mix(color, p.rock, rock);
 }
 
+glm::vec3 HypsometricSource::meanColor(double low, double high, double slope) const {
+    if (!(high - low > 1e-9)) {
+        return colorAt(0.5 * (low + high), slope);
+    }
+    // Cut [low, high] where the colour function has a kink or a step: sea level, the
+    // water depth (end of the square root), every stop. Between cuts it is linear in
+    // height (land) or √ of the depth (water), both integrated exactly.
+    double cuts[64];
+    int count = 0;
+    cuts[count++] = low;
+    const auto cut = [&](double height) {
+        if (height > low && height < high && count < 63) {
+            cuts[count++] = height;
+        }
+    };
+    cut(-parameters_.waterDepth);
+    cut(0.0);
+    for (const HypsometricStop& stop : parameters_.ramp) {
+        cut(stop.height);
+    }
+    std::sort(cuts + 1, cuts + count);
+    cuts[count++] = high;
+    if (count == 2 && low >= 0.0) {
+        return colorAt(0.5 * (low + high), slope);  // linear piece: the mean is the middle
+    }
+    glm::dvec3 sum(0.0);
+    const HypsometricParameters& p = parameters_;
+    for (int i = 0; i + 1 < count; ++i) {
+        const double a = cuts[i], b = cuts[i + 1];
+        if (b <= 0.0) {
+            // Water: mix(shallow, deep, √t), t = −h / depth clamped to 1; the mean of √t
+            // over [tb, ta] is ⅔ (ta^1.5 − tb^1.5) / (ta − tb) (exact).
+            const double ta = std::min(-a / p.waterDepth, 1.0),
+                         tb = std::min(-b / p.waterDepth, 1.0);
+            const double root =
+                ta - tb > 1e-12 ? 2.0 / 3.0 * (std::pow(ta, 1.5) - std::pow(tb, 1.5)) / (ta - tb)
+                                : std::sqrt(ta);
+            sum += (b - a) * glm::mix(glm::dvec3(p.shallowWater), glm::dvec3(p.water), root);
+            continue;
+        }
+        // Land: linear in height between cuts, so the mean is the middle's colour.
+        sum += (b - a) * glm::dvec3(colorAt(0.5 * (a + b), slope));
+    }
+    return glm::vec3(sum / (high - low));
+}
+
 Result<TilePointer> HypsometricSource::produce(const TileKey& key, TileProvider& provider) const {
     Result<TilePointer> height = provider.tile(*height_, key);
     if (!height) {
@@ -114,22 +160,21 @@ Result<TilePointer> HypsometricSource::produce(const TileKey& key, TileProvider&
             const double slope =
                 std::acos(std::clamp(glm::dot(glm::normalize(normal), up), -1.0, 1.0));
             const double elevation = h.at(ix, iy, 0);
-            glm::vec3 c = colorAt(elevation, slope);
-            // Anti-alias the coastline: where the zero contour passes within half a
-            // texel, mix land and water by the texel's signed distance to it (height
-            // over the local height change per texel), so filtered tiles show a smooth
-            // coast instead of texel steps.
+            // The texel's colour is the mean colour of the heights it spans, not the colour
+            // of its centre height: the ramp is a nonlinear function of a band-limited
+            // height, and point-sampling it made every coarse texel whose centre lies in a
+            // thin band (the 0-30 m beach) wholly that colour — from space a staircase of
+            // sand texels along the coast and sand rectangles on lowlands (issue 16). With
+            // the height changing linearly across the texel (central differences), the
+            // texel's heights are uniform over [h - change / 2, h + change / 2].
             const int x0 = std::max(ix - 1, -format.border),
                       x1 = std::min(ix + 1, format.size + format.border - 1);
             const int y0 = std::max(iy - 1, -format.border),
                       y1 = std::min(iy + 1, format.size + format.border - 1);
             const double change = std::hypot((h.at(x1, iy, 0) - h.at(x0, iy, 0)) / (x1 - x0),
                                              (h.at(ix, y1, 0) - h.at(ix, y0, 0)) / (y1 - y0));
-            if (change > 0.0 && std::abs(elevation) < change) {
-                const float land =
-                    static_cast<float>(std::clamp(0.5 + elevation / change, 0.0, 1.0));
-                c = glm::mix(colorAt(-1e-3, slope), colorAt(1e-3, slope), land);
-            }
+            const glm::vec3 c =
+                meanColor(elevation - 0.5 * change, elevation + 0.5 * change, slope);
             tile->at(ix, iy, 0) = c.x;
             tile->at(ix, iy, 1) = c.y;
             tile->at(ix, iy, 2) = c.z;

@@ -90,6 +90,7 @@ private:
     void collectOverrides(Declaration& scenario);
     void addOmittedBlocks(ProjectModel& model, const std::filesystem::path& path);
     void collectParams(ProjectModel& model);
+    void reportUnusedSources(const std::vector<ProjectModel>& models);
     std::vector<ProjectModel> scenarioModels(ProjectModel model,
                                              const std::vector<Declaration*>& scenarios);
     // Applies the overrides of `scenario` to its copy of the model; the names of the

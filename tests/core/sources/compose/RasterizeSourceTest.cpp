@@ -185,6 +185,72 @@ TEST(RasterizeSource, LineWidthInMetresAtAnyLatitude) {
     }
 }
 
+// Issue 16: a 150 m border seen from afar must not flood coarse levels. Its coverage
+// summed over a coarse tile (× texel area) is the line's metric area, whatever
+// minimum_texels; at a fine level it is drawn at full opacity.
+TEST(RasterizeSource, WidenedLinesKeepTheirMetricAreaOnCoarseTiles) {
+    const auto path = writeGeoJson(
+        "border.geojson",
+        R"({"type":"FeatureCollection","features":[)"
+        R"({"type":"Feature","properties":{},"geometry":{"type":"LineString","coordinates":[[8.5,45.5],[8.5,46.5]]}}]})");
+    FeatureSource features("border", path, {});
+    const double length =
+        Geodesy::distance(45.5 * kDegree, 8.5 * kDegree, 46.5 * kDegree, 8.5 * kDegree);
+    const int size = 256, border = 2;
+    TileEvaluator evaluator(TileFormat{size, border});
+    const auto tileKey = [](int level) {
+        TileKey key;
+        key.level = level;
+        key.x = int(std::floor((8.5 * kDegree + std::numbers::pi) / (2 * std::numbers::pi) *
+                               key.columns()));
+        key.y = int(
+            std::floor((std::numbers::pi / 2 - 46.0 * kDegree) / std::numbers::pi * key.rows()));
+        return key;
+    };
+    for (const double minimumTexels : {0.0, 1.5, 4.0}) {
+        RasterizeParameters parameters;
+        parameters.image = false;
+        parameters.lineWidth = 150.0;
+        parameters.minimumTexels = minimumTexels;
+        RasterizeSource source("border.mask", &features, nullptr, parameters);
+        // Level 6: texels of about 1.2 km; the whole line lies inside the tile.
+        const TileKey key = tileKey(6);
+        Result<TilePointer> tile = evaluator.tile(source, key);
+        ASSERT_TRUE(tile) << tile.error().message;
+        double area = 0.0;
+        float largest = 0.0f;
+        for (int iy = 0; iy < size; ++iy) {
+            const double north = key.north() - iy * (key.north() - key.south()) / size;
+            const double texelArea = referenceQuadArea(north - (key.north() - key.south()) / size,
+                                                       north, (key.east() - key.west()) / size);
+            for (int ix = 0; ix < size; ++ix) {
+                area += tile.value()->at(ix, iy, 0) * texelArea;
+                largest = std::max(largest, tile.value()->at(ix, iy, 0));
+            }
+        }
+        // Ink = opacity × drawn area = 150 m / drawn × (drawn × length + π drawn² / 4): the
+        // metric area plus the round caps' share (3.5 % at 4 texels).
+        const double middle = 0.5 * (key.north() + key.south());
+        const double texelHeight = (key.north() - key.south()) / size;
+        const double texelMetres = Geodesy::distance(middle - texelHeight / 2, 8.5 * kDegree,
+                                                     middle + texelHeight / 2, 8.5 * kDegree);
+        const double drawn = std::max(150.0, minimumTexels * texelMetres);
+        const double ink = 150.0 * (length + std::numbers::pi * drawn / 4);
+        EXPECT_NEAR(area / ink, 1.0, 0.03) << "minimum_texels " << minimumTexels;
+        EXPECT_NEAR(area / (length * 150.0), 1.0, 0.04) << "minimum_texels " << minimumTexels;
+        // Faded, not flooded: no texel is more covered than 150 m of its ~1.2 km.
+        EXPECT_LT(largest, 0.2f) << "minimum_texels " << minimumTexels;
+        // Level 16: 150 m is many texels wide, drawn opaque.
+        Result<TilePointer> fine = evaluator.tile(source, tileKey(16));
+        ASSERT_TRUE(fine) << fine.error().message;
+        float fineLargest = 0.0f;
+        for (float c : fine.value()->texels()) {
+            fineLargest = std::max(fineLargest, c);
+        }
+        EXPECT_FLOAT_EQ(fineLargest, 1.0f) << "minimum_texels " << minimumTexels;
+    }
+}
+
 TEST(RasterizeSource, ColoursFromAttributesAndErrors) {
     const auto path = writeGeoJson(
         "landuse.geojson",

@@ -66,6 +66,31 @@ TEST(SourceGraph, BuildsFromAHandMadeModel) {
     EXPECT_EQ(graph->find("nope"), nullptr);
 }
 
+// Issue 16: terrain whose layers carry no normals is shaded from normals derived from its
+// height (a normal_map of the elevation layer, checked against an analytic slope in
+// NormalMapSourceTest), not left flat.
+TEST(SourceGraph, LayersWithoutNormalsGetNormalsDerivedFromTheHeight) {
+    ProjectModel model = demoModel();
+    Block scenario;
+    scenario.keyword = "scenario";
+    scenario.name = "bare";
+    scenario.location = at(7, 10);
+    Value layers;
+    layers.data = ValueList{reference("height", at(7, 20)), reference("colour", at(7, 29))};
+    layers.location = at(7, 19);
+    scenario.attributes.push_back({"layers", layers, at(7, 12)});
+    model.scenarios.push_back(scenario);
+    Result<SourceGraph> graph = SourceGraph::build(model);
+    ASSERT_TRUE(graph) << graph.error().message;
+    Result<TerrainLayers> terrain = graph->terrainLayers(model, "bare");
+    ASSERT_TRUE(terrain) << terrain.error().message;
+    ASSERT_NE(terrain->normals, nullptr);
+    EXPECT_EQ(terrain->normals->output(), PortType::Normals);
+    EXPECT_EQ(terrain->normals->name(), "height.normals");
+    ASSERT_EQ(terrain->normals->inputs().size(), 1u);
+    EXPECT_EQ(terrain->normals->inputs()[0], graph->find("height"));
+}
+
 TEST(SourceGraph, InputsDefinedLaterAreBuiltFirst) {
     ProjectModel model = demoModel();
     std::swap(model.sources.front(), model.sources.back());

@@ -19,6 +19,7 @@
 #include "sylva/core/sources/graph/SourceGraph.h"
 #include "sylva/core/vegetation/VegetationStream.h"
 #include "sylva/render/gl/Framebuffer.h"
+#include "sylva/render/scene/SampleAccumulator.h"
 #include "sylva/render/shading/ShadingPass.h"
 #include "sylva/render/terrain/TerrainRenderer.h"
 #include "sylva/render/vegetation/VegetationRenderer.h"
@@ -38,6 +39,9 @@ struct RenderSettings {
     bool waitForTiles = true;
     // Also read back the linear radiance (Image::radiance), e.g. for EXR output.
     bool linearOutput = false;
+    // Anti-aliasing: samples per pixel (1..SampleAccumulator::kMaxSamples), each a full
+    // render with a sub-pixel shifted projection, averaged in linear light (SampleAccumulator).
+    int samples = 1;
     VegetationSettings vegetation;
     // Plants handed in directly (tests, benchmarks), drawn with the species of
     // vegetation(); the `plants` layers of the scenario are streamed besides.
@@ -56,9 +60,9 @@ struct Image {
 struct RenderStatistics {
     TerrainFrameStatistics terrain;
     double heightAboveTerrain = 0;     // metres
-    double gpuSeconds = 0;             // draw + shade + read-back
-    double terrainPassSeconds = 0;     // the terrain's G-buffer pass alone (to glFinish)
-    double vegetationPassSeconds = 0;  // selection, upload and the plants' G-buffer pass
+    double gpuSeconds = 0;             // draw + shade (every sample) + read-back
+    double terrainPassSeconds = 0;     // the terrain's G-buffer passes alone (to glFinish)
+    double vegetationPassSeconds = 0;  // selection, upload and the plants' G-buffer passes
     VegetationStatistics vegetation;
     VegetationStreamStatistics vegetationStream;
 };
@@ -69,7 +73,8 @@ public:
                                                          const TerrainSettings& settings);
     ~SceneRenderer();
 
-    // Fails if the camera is below the terrain or a tile fails.
+    // Fails if the camera is below the terrain, a tile fails or settings.samples is outside
+    // 1..SampleAccumulator::kMaxSamples.
     Result<Image> render(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
                          const RenderSettings& settings);
 
@@ -87,6 +92,19 @@ public:
 private:
     SceneRenderer() = default;
     Status ensureTargets(int width, int height, bool linearOutput);
+    // Ground height, visible levels and the clipmap update (seed 001 Alg. 3); the levels
+    // that are ready to draw.
+    Result<LevelRange> prepareTerrain(const TerrainLayers& layers, TileProvider& provider,
+                                      const Camera& camera, const RenderSettings& settings);
+    // The plants to draw: settings.instanceBatches and the streamed plants layers.
+    Result<std::vector<const InstanceBatch*>> streamVegetation(const TerrainLayers& layers,
+                                                               TileProvider& provider,
+                                                               const Camera& camera,
+                                                               const RenderSettings& settings);
+    // One sample: terrain and plants into the G-buffer with `projection`, shaded into output_.
+    void drawSample(const Camera& camera, const glm::dmat4& projection, const LevelRange& levels,
+                    const std::vector<const InstanceBatch*>& batches,
+                    const RenderSettings& settings);
     // The stream layers of the scenario's plants sources; registers each species'
     // asset with the vegetation renderer on first use (building it may take seconds).
     Result<std::vector<VegetationStreamLayer>> vegetationLayers(const TerrainLayers& layers);
@@ -96,6 +114,7 @@ private:
     VegetationStream vegetationStream_;
     std::map<std::uint64_t, std::uint32_t> speciesOfModel_;  // model content hash -> species
     std::unique_ptr<ShadingPass> shading_;
+    std::unique_ptr<SampleAccumulator> accumulator_;
     Framebuffer gbuffer_;
     Framebuffer output_;
     RenderStatistics statistics_;

@@ -11,9 +11,12 @@
 //    vegetation renderer exists), coloured colour x instance tint; instances of the
 //    neighbour tiles that reach into this tile are drawn too, so discs are seamless.
 //    Tiles coarser than the plants source's minimumLevel() are left transparent.
-// With minimum_texels > 0, lines and outlines are widened to at least that many texels
-// of the tile's north-south texel size (a map-like display choice; widths are then
-// no longer metric in coarse tiles).
+// With minimum_texels > 0, lines and outlines narrower than that many texels (of the
+// tile's north-south texel size) are drawn that wide at the opacity metric width / drawn
+// width, so their ink stays metric at every level (coverage × area summed over a tile is
+// length × width): a thin line fades with distance instead of widening. Since the clipmap
+// draws a level where its texels are at most about a pixel, this is a minimum width on
+// screen, not a texel minimum that floods coarse levels (issue 16).
 // Colour: `color`, or per feature from `color_attribute`, either a hex string
 // ("#1a8c3f" or "1a8c3f", sRGB) or a key of the `colors` mapping. Features are
 // composited in file order with the "over" operator. Colours are sRGB as written and
@@ -40,8 +43,8 @@ struct RasterizeParameters {
     double outline = 0.0;      // metres; 0: none
     double lineWidth = 10.0;   // metres
     double pointRadius = 5.0;  // metres
-    // Lines and outlines are drawn at least this many texels wide (0: exactly their
-    // width), so thin lines stay visible in coarse tiles, as on a map.
+    // Lines and outlines narrower than this many texels are drawn that wide at opacity
+    // width / drawn width (their ink stays metric); 0: exactly their width.
     double minimumTexels = 0.0;
     glm::vec3 color{1.0f};  // linear RGB
     double opacity = 1.0;

@@ -1,7 +1,9 @@
 // HypsometricSource (`source x : hypsometric`): an elevation-driven colour source.
 // A ramp of (height, colour) stops coloured by elevation, water below 0 m (shallow
 // to deep over water_depth), and rock on steep slopes. Colours are given in sRGB and
-// interpolated in linear RGB; output is linear RGBA (alpha 1).
+// interpolated in linear RGB; output is linear RGBA (alpha 1). Each texel is the mean
+// colour of the heights it spans (the height change across it from central differences),
+// so thin bands (beach, coast) keep their area at coarse levels instead of filling texels.
 #pragma once
 
 #include <vector>
@@ -43,6 +45,9 @@ public:
 
     // Linear RGB for a height (metres) and a slope angle (radians).
     glm::vec3 colorAt(double height, double slope) const;
+    // The mean of colorAt over heights uniform in [low, high] (metres): a texel's colour
+    // when its heights span that range (exact for the piecewise-linear land ramp).
+    glm::vec3 meanColor(double low, double high, double slope) const;
 
 private:
     const Source* height_;
