@@ -179,7 +179,7 @@ Status flyClipmap(SceneRenderer& renderer, const ElevationGrid& grid,
     schedulerOptions.format = TileFormat{256, 2};
     schedulerOptions.budgetBytes = options.cacheBytes;
     Scheduler evaluator(schedulerOptions);
-    const TerrainLayers layers{&elevation, &colour, &normals, {}};
+    const TerrainLayers layers{&elevation, &colour, &normals, {}, {}};
     for (const FlightFrame& frame : frames) {
         const auto start = Clock::now();
         Result<Image> image = renderer.render(layers, evaluator, frame.camera, settings);

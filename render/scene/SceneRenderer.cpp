@@ -26,6 +26,11 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const ShaderLibrary
         return vegetation.error();
     }
     renderer->vegetation_ = std::move(vegetation.value());
+    Result<std::unique_ptr<MeshRenderer>> meshes = MeshRenderer::create(library);
+    if (!meshes) {
+        return meshes.error();
+    }
+    renderer->meshes_ = std::move(meshes.value());
     Result<std::unique_ptr<ShadingPass>> shading = ShadingPass::create(library);
     if (!shading) {
         return shading.error();
@@ -130,9 +135,14 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     const auto terrainStart = std::chrono::steady_clock::now();
     terrain_->draw(camera, projection, levels, settings.ocean);
     glFinish();  // only to time the pass; the read-back below waits anyway
-    const auto vegetationStart = std::chrono::steady_clock::now();
     statistics_.terrainPassSeconds =
-        std::chrono::duration<double>(vegetationStart - terrainStart).count();
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - terrainStart).count();
+    if (Status drawn = drawMeshes(layers, provider, camera, projection, settings); !drawn) {
+        Framebuffer::unbind();
+        glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+        return drawn.error();
+    }
+    const auto vegetationStart = std::chrono::steady_clock::now();
     statistics_.vegetation = {};
     statistics_.vegetationStream = {};
     statistics_.vegetationPassSeconds = 0;
@@ -187,6 +197,32 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     statistics_.gpuSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return image;
+}
+
+Status SceneRenderer::drawMeshes(const TerrainLayers& layers, TileProvider& provider,
+                                 const Camera& camera, const glm::dmat4& projection,
+                                 const RenderSettings& settings) {
+    statistics_.meshes = {};
+    statistics_.meshPassSeconds = 0;
+    if (layers.meshes.empty()) {
+        return Status::success();
+    }
+    const auto start = std::chrono::steady_clock::now();
+    if (Status status = meshes_->update(layers.meshes, provider, camera, settings.meshes);
+        !status) {
+        return status;
+    }
+    MeshDrawView view;
+    view.eye = camera.position;
+    view.rotation = camera.viewRotation();
+    view.projection = projection;
+    view.pixelAngle = 2.0 * std::tan(camera.verticalFov / 2) / settings.height;
+    meshes_->draw(view, false);
+    glFinish();  // only to time the pass
+    statistics_.meshes = meshes_->statistics();
+    statistics_.meshPassSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return Status::success();
 }
 
 Result<std::vector<VegetationStreamLayer>> SceneRenderer::vegetationLayers(

@@ -19,6 +19,7 @@
 #include "sylva/core/sources/graph/SourceGraph.h"
 #include "sylva/core/vegetation/VegetationStream.h"
 #include "sylva/render/gl/Framebuffer.h"
+#include "sylva/render/objects/MeshRenderer.h"
 #include "sylva/render/shading/ShadingPass.h"
 #include "sylva/render/terrain/TerrainRenderer.h"
 #include "sylva/render/vegetation/VegetationRenderer.h"
@@ -39,6 +40,7 @@ struct RenderSettings {
     // Also read back the linear radiance (Image::radiance), e.g. for EXR output.
     bool linearOutput = false;
     VegetationSettings vegetation;
+    MeshSettings meshes;  // buildings and models of the scenario's `meshes` layers
     // Plants handed in directly (tests, benchmarks), drawn with the species of
     // vegetation(); the `plants` layers of the scenario are streamed besides.
     std::vector<const InstanceBatch*> instanceBatches;
@@ -59,6 +61,8 @@ struct RenderStatistics {
     double gpuSeconds = 0;             // draw + shade + read-back
     double terrainPassSeconds = 0;     // the terrain's G-buffer pass alone (to glFinish)
     double vegetationPassSeconds = 0;  // selection, upload and the plants' G-buffer pass
+    double meshPassSeconds = 0;        // buildings and models: streaming and G-buffer pass
+    MeshStatistics meshes;
     VegetationStatistics vegetation;
     VegetationStreamStatistics vegetationStream;
 };
@@ -83,6 +87,7 @@ public:
     double near() const { return near_; }
     TerrainRenderer& terrain() { return *terrain_; }
     VegetationRenderer& vegetation() { return *vegetation_; }
+    MeshRenderer& meshes() { return *meshes_; }
 
 private:
     SceneRenderer() = default;
@@ -90,9 +95,13 @@ private:
     // The stream layers of the scenario's plants sources; registers each species'
     // asset with the vegetation renderer on first use (building it may take seconds).
     Result<std::vector<VegetationStreamLayer>> vegetationLayers(const TerrainLayers& layers);
+    // Streams and draws the scenario's buildings and models into the G-buffer.
+    Status drawMeshes(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
+                      const glm::dmat4& projection, const RenderSettings& settings);
 
     std::unique_ptr<TerrainRenderer> terrain_;
     std::unique_ptr<VegetationRenderer> vegetation_;
+    std::unique_ptr<MeshRenderer> meshes_;
     VegetationStream vegetationStream_;
     std::map<std::uint64_t, std::uint32_t> speciesOfModel_;  // model content hash -> species
     std::unique_ptr<ShadingPass> shading_;
