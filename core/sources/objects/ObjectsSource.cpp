@@ -155,6 +155,8 @@ public:
     Status read(const Feature& feature, Placement& placement) const {
         placement.featureId = feature.id;
         placement.scale = parameters_.scale;
+        placement.heading = parameters_.heading;
+        placement.height = parameters_.height;
         const auto number = [&](std::optional<std::size_t> field, double& out,
                                 double factor) -> Status {
             if (!field) {
