@@ -49,8 +49,8 @@ TEST(ObjectsGolden, Village) {
     settings.height = kHeight;
     settings.sunDirection = Ellipsoid::surfaceNormal(25 * std::numbers::pi / 180, 0.0);
     settings.exposure = 0.45;
-    Result<Image> image = renderer.value()->render(layers.value(), evaluator, camera.value(),
-                                                   settings);
+    Result<Image> image =
+        renderer.value()->render(layers.value(), evaluator, camera.value(), settings);
     ASSERT_TRUE(image) << image.error().message;
     const MeshStatistics& meshes = renderer.value()->statistics().meshes;
     EXPECT_GT(meshes.trianglesDrawn, 100u);
