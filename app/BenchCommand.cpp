@@ -76,6 +76,7 @@ const CommandSuite kCommandSuites[] = {
     {"terrain", runTerrainBench},       {"tiles", runTilesBench},
     {"plantlod", runPlantLodBench},     {"turnaround", runTurnaroundBench},
     {"vegetation", runVegetationBench}, {"shading", runShadingBench},
+    {"objects", runObjectsBench},
 };
 
 // Every suite's name, in the order `sylva bench --help` lists them.

@@ -42,7 +42,7 @@ render::RenderSettings flightRenderSettings(int width, int height);
 class FlightTerrain {
 public:
     explicit FlightTerrain(ElevationGrid grid);
-    TerrainLayers layers() const { return {&elevation_, &colour_, &normals_, {}}; }
+    TerrainLayers layers() const { return {&elevation_, &colour_, &normals_, {}, {}}; }
 
 private:
     GridElevationSource elevation_;

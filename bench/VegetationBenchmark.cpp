@@ -322,7 +322,7 @@ private:
           elevation_("flat", kGround),
           color_("meadow", glm::vec4(0.10f, 0.14f, 0.05f, 1.0f)),
           normals_("flat.normals", &elevation_, 1.0),
-          layers_{&elevation_, &color_, &normals_, {}},
+          layers_{&elevation_, &color_, &normals_, {}, {}},
           evaluator_(TileFormat{256, 2}) {
         settings_.sunDirection =
             glm::normalize(Ellipsoid::surfaceNormal(kLatitude - 0.5, kLongitude - 0.6));

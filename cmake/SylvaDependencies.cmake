@@ -30,6 +30,10 @@ find_path(SYLVA_STB_INCLUDE_DIR stb_image.h PATHS /usr/include/stb REQUIRED)
 find_library(SYLVA_STB_LIBRARY stb REQUIRED)
 find_path(SYLVA_TINYGLTF_INCLUDE_DIR tiny_gltf.h REQUIRED)
 
+# Buildings (sylva_core): roof triangulation and footprint validity with GEOS's C API
+# (libgeos-dev; core/sources/objects/FootprintTriangulator).
+find_package(GEOS 3.10 CONFIG REQUIRED)
+
 # GL side (sylva_render only).
 find_package(glfw3 3.3 CONFIG REQUIRED)
 pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa)

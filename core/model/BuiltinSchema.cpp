@@ -433,11 +433,14 @@ KindSchema elevationEditSource() {
         "attributes.",
         {port("input", PortType::Elevation, true, "The elevation to edit."),
          port("features", PortType::Features, true, "Polygons to apply, in order."),
-         wordChoice("mode", {"flatten", "raise", "lower", "slope"}, "flatten", "The edit."),
+         wordChoice("mode", {"flatten", "raise", "lower", "slope", "level"}, "flatten",
+                    "The edit. `level`: level at the mean input height under the polygon "
+                    "(+ amount), e.g. the plots of a proposal's buildings."),
          number("height", Dimension::Length, 0.0, -1e5, 1e5,
                 "Target height above the ellipsoid (flatten), or the plane's height at the "
                 "centroid (slope)."),
-         number("amount", Dimension::Length, 0.0, 0.0, 1e5, "Height change (raise, lower)."),
+         number("amount", Dimension::Length, 0.0, 0.0, 1e5,
+                "Height change (raise, lower; level: added to the mean)."),
          number("gradient", Dimension::Ratio, 0.0, -100.0, 100.0,
                 "Slope of the plane, rise per horizontal distance (slope; 10% = 1 m per 10 m)."),
          number("direction", Dimension::Angle, 0.0, -360 * kDegree, 360 * kDegree,
@@ -478,6 +481,9 @@ KindSchema plantsSource() {
              port("density", PortType::Mask, false, "Density in [0, 1] (times per_hectare)."),
              port("features", PortType::Features, false,
                   "Points (one instance each) and/or polygons (scattered over)."),
+             port("exclude", PortType::Features, false,
+                  "Polygons kept free of plants (e.g. the footprints of a proposal's "
+                  "buildings): no instance inside them."),
              number("per_hectare", Dimension::None, 100.0, 0.01, 1e4,
                     "Instances per hectare where the density is 1 (inside polygons)."),
              number("spacing", Dimension::Length, 0.0, 0.0, 1e4,
@@ -665,6 +671,7 @@ SchemaRegistry makeBuiltin() {
     registry.setOutputFrom("blend", "base");
     registry.setOutputFrom("rasterize", "kind");
     addLanguageSchema(registry);
+    addObjectsSchema(registry);
     addAnalysisSchema(registry);
     return registry;
 }

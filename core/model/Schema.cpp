@@ -24,6 +24,8 @@ const char* portTypeName(PortType type) {
             return "instances";
         case PortType::PlantModel:
             return "plant_model";
+        case PortType::Meshes:
+            return "meshes";
     }
     return "none";
 }

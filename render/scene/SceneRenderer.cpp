@@ -26,6 +26,11 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const ShaderLibrary
         return vegetation.error();
     }
     renderer->vegetation_ = std::move(vegetation.value());
+    Result<std::unique_ptr<MeshRenderer>> meshes = MeshRenderer::create(library);
+    if (!meshes) {
+        return meshes.error();
+    }
+    renderer->meshes_ = std::move(meshes.value());
     Result<std::unique_ptr<ShadingPass>> shading = ShadingPass::create(library);
     if (!shading) {
         return shading.error();
@@ -149,9 +154,10 @@ void SceneRenderer::drawSample(const Camera& camera, const glm::dmat4& projectio
     const auto terrainStart = std::chrono::steady_clock::now();
     terrain_->draw(camera, projection, levels, settings.ocean);
     glFinish();  // only to time the pass; the read-back below waits anyway
-    const auto vegetationStart = std::chrono::steady_clock::now();
     statistics_.terrainPassSeconds +=
-        std::chrono::duration<double>(vegetationStart - terrainStart).count();
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - terrainStart).count();
+    drawMeshes(camera, projection, settings);
+    const auto vegetationStart = std::chrono::steady_clock::now();
     if (!batches.empty()) {
         vegetation_->draw(batches, camera, projection, near_, settings.width, settings.height,
                           settings.vegetation);
@@ -197,6 +203,9 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     if (!batches) {
         return batches.error();
     }
+    if (Status streamed = streamMeshes(layers, provider, camera, settings); !streamed) {
+        return streamed.error();
+    }
     near_ = std::clamp(0.3 * statistics_.heightAboveTerrain, 0.02, 1.0e4);
     const glm::dmat4 projection = SceneRenderer::projection(
         camera.verticalFov, double(settings.width) / settings.height, near_);
@@ -232,6 +241,42 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     statistics_.gpuSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return image;
+}
+
+Status SceneRenderer::streamMeshes(const TerrainLayers& layers, TileProvider& provider,
+                                   const Camera& camera, const RenderSettings& settings) {
+    statistics_.meshes = {};
+    statistics_.meshPassSeconds = 0;
+    meshesStreamed_ = !layers.meshes.empty();
+    if (!meshesStreamed_) {
+        return Status::success();
+    }
+    const auto start = std::chrono::steady_clock::now();
+    if (Status status = meshes_->update(layers.meshes, provider, camera, settings.meshes);
+        !status) {
+        return status;
+    }
+    statistics_.meshPassSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return Status::success();
+}
+
+void SceneRenderer::drawMeshes(const Camera& camera, const glm::dmat4& projection,
+                               const RenderSettings& settings) {
+    if (!meshesStreamed_) {
+        return;  // the tiles of another scenario may still be resident
+    }
+    const auto start = std::chrono::steady_clock::now();
+    MeshDrawView view;
+    view.eye = camera.position;
+    view.rotation = camera.viewRotation();
+    view.projection = projection;
+    view.pixelAngle = 2.0 * std::tan(camera.verticalFov / 2) / settings.height;
+    meshes_->draw(view, false);
+    glFinish();  // only to time the pass
+    statistics_.meshes = meshes_->statistics();
+    statistics_.meshPassSeconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 Result<std::vector<VegetationStreamLayer>> SceneRenderer::vegetationLayers(

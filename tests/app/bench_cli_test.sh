@@ -43,6 +43,7 @@ usage_error "--dem expects a sample count per side within 16..8192" bench terrai
 usage_error "--dem expects a sample count per side within 16..8192" bench terrain --dem 64x
 usage_error "--frames expects a whole number within 1..10000" bench terrain --frames 0
 usage_error "--trees expects a whole number within 1..10000000" bench vegetation --trees 0
+usage_error "--buildings expects a whole number within 1..1000000" bench objects --buildings 0
 usage_error "--reference-scale expects a whole number within 1..8" \
     bench vegetation --reference-scale 9
 usage_error "--synthetic needs a positive leaf count, got 'many'" \
@@ -56,7 +57,7 @@ usage_error "--ao-samples needs a non-negative integer, got ''" \
 
 # --- suite names: every message lists every suite ----------------------------------
 
-suites="dsl, vector, plants, analysis, terrain, tiles, plantlod, turnaround, vegetation, shading"
+suites="dsl, vector, plants, analysis, terrain, tiles, plantlod, turnaround, vegetation, shading, objects"
 usage_error "unknown bench suite 'nope' (suites: $suites)" bench nope
 usage_error "bench needs one suite: $suites" bench
 usage_error "--size expects WIDTHxHEIGHT within 16..16384" bench shading --size 10x10

@@ -78,7 +78,7 @@ TEST(SchedulerRender, BatchFramesEqualTheSynchronousEvaluatorAndInteractiveOnesC
     ASSERT_TRUE(context) << context.error().message;
     const HillSource elevation(std::chrono::milliseconds(2));
     const NormalMapSource normals("hills.normals", &elevation, 1.0);
-    const TerrainLayers layers{&elevation, nullptr, &normals, {}};
+    const TerrainLayers layers{&elevation, nullptr, &normals, {}, {}};
     Result<std::unique_ptr<SceneRenderer>> reference =
         SceneRenderer::create(ShaderLibrary(), TerrainSettings{});
     Result<std::unique_ptr<SceneRenderer>> batch =

@@ -125,7 +125,7 @@ protected:
         settings.sunDirection = glm::normalize(c.position + c.axes[0] * 3.0e6 + c.axes[1] * 6.0e6);
         settings.atmosphere = atmosphere;
         settings.ocean = false;
-        TerrainLayers layers{elevation_, nullptr, normals_, {}};
+        TerrainLayers layers{elevation_, nullptr, normals_, {}, {}};
         Result<Image> image = renderer_->render(layers, *evaluator_, c, settings);
         EXPECT_TRUE(image) << image.error().message;
         return image ? image.value() : Image{};
@@ -271,7 +271,7 @@ TEST_F(TerrainAccuracy, OneCentimetreMoveChangesTheImageOnlySlightly) {
     settings.height = 90;
     settings.sunDirection = glm::normalize(a.position + a.axes[0] * 3.0e6 + a.axes[1] * 6.0e6);
     settings.ocean = false;
-    const TerrainLayers layers{&high, nullptr, &highNormals, {}};
+    const TerrainLayers layers{&high, nullptr, &highNormals, {}, {}};
     Result<Image> first = renderer_->render(layers, *evaluator_, a, settings);
     Result<Image> second = renderer_->render(layers, *evaluator_, b, settings);
     ASSERT_TRUE(first && second);

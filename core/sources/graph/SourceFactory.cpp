@@ -2,6 +2,8 @@
 
 #include "sylva/core/sources/compose/BlendSource.h"
 #include "sylva/core/sources/compose/RasterizeSource.h"
+#include "sylva/core/sources/objects/BuildingsSource.h"
+#include "sylva/core/sources/objects/ObjectsSource.h"
 #include "sylva/core/sources/plants/PlantModelSource.h"
 #include "sylva/core/sources/plants/PlantsSource.h"
 #include "sylva/core/sources/raster/AdjustSource.h"
@@ -35,6 +37,8 @@ SourceCreator findSourceCreator(std::string_view kind) {
         {"elevation_edit", &ElevationEditSource::create},
         {"plants", &PlantsSource::create},
         {"plant_model", &PlantModelSource::create},
+        {"buildings", &BuildingsSource::create},
+        {"objects", &ObjectsSource::create},
     };
     for (const Entry& entry : kTable) {
         if (entry.kind == kind) {

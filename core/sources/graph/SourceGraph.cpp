@@ -7,6 +7,7 @@
 
 #include "sylva/core/model/BlockReader.h"
 #include "sylva/core/sources/graph/SourceFactory.h"
+#include "sylva/core/sources/objects/MeshSource.h"
 #include "sylva/core/sources/plants/PlantsSource.h"
 #include "sylva/core/sources/raster/NormalMapSource.h"
 #include "sylva/core/sources/raster/RasterSource.h"
@@ -186,11 +187,17 @@ Result<TerrainLayers> SourceGraph::terrainLayers(const ProjectModel& model,
                     continue;
                 }
                 [[fallthrough]];
+            case PortType::Meshes:
+                if (const MeshSource* meshes = MeshSource::from(source)) {
+                    layers.meshes.push_back(meshes);
+                    continue;
+                }
+                [[fallthrough]];
             default:
                 return Error{
                     reader.where("layers") + "source '" + name + "' gives " +
                     portTypeName(source->output()) +
-                    ", which a scenario cannot draw (elevation, image, normals or plants)"};
+                    ", which a scenario cannot draw (elevation, image, normals, plants or meshes)"};
         }
         if (*slot != nullptr) {
             return Error{reader.where("layers") + "two " + portTypeName(source->output()) +

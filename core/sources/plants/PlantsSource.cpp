@@ -230,7 +230,8 @@ PlantsSource::PlantsSource(std::string name, const Source* elevation, const Sour
         .add(parameters_.scaleAttribute);
     hash.add(parameters_.rotationAttribute).add(parameters_.tintVariation).add(parameters_.seed);
     hash.add(density_ != nullptr).add(features_ != nullptr);
-    setParameterHash(hash.value());
+    parameterHash_ = hash.value();
+    setParameterHash(parameterHash_);
 
     double total = 0.0;
     for (const auto& [species, share] : parameters_.species) {
@@ -332,6 +333,9 @@ Result<std::vector<PlantInstance>> PlantsSource::generate(const TileKey& key, co
         }
     }
     if (density_ == nullptr && polygons.empty()) {
+        if (Status dropped = dropExcluded(window, out); !dropped) {
+            return dropped.error();
+        }
         return out;
     }
     if (speciesCumulative_.empty()) {
@@ -340,7 +344,39 @@ Result<std::vector<PlantInstance>> PlantsSource::generate(const TileKey& key, co
     if (Status scattered = scatter(polygons, key, window, inputs, out); !scattered) {
         return scattered.error();
     }
+    if (Status dropped = dropExcluded(window, out); !dropped) {
+        return dropped.error();
+    }
     return out;
+}
+
+void PlantsSource::excludeInside(const FeatureSource* footprints) {
+    SYLVA_CHECK(footprints != nullptr && exclude_ == nullptr);
+    exclude_ = footprints;
+    addInput(exclude_);
+    setParameterHash(ContentHash().add(parameterHash_).add(std::string_view("exclude")).value());
+}
+
+Status PlantsSource::dropExcluded(const Window& window, std::vector<PlantInstance>& out) const {
+    if (exclude_ == nullptr || out.empty()) {
+        return Status::success();
+    }
+    Result<std::shared_ptr<const FeatureCollection>> collection = exclude_->collection();
+    if (!collection) {
+        return collection.error();
+    }
+    std::vector<FeatureHit> polygons;
+    for (const FeatureHit& hit : collection.value()->query(window.bounds)) {
+        if (hit.feature->kind == GeometryKind::Polygon) {
+            polygons.push_back(hit);
+        }
+    }
+    if (!polygons.empty()) {
+        std::erase_if(out, [&](const PlantInstance& instance) {
+            return polygonDensity(polygons, instance.longitude, instance.latitude) > 0.0;
+        });
+    }
+    return Status::success();
 }
 
 // ---------------------------------------------------------------------------- points
@@ -764,6 +800,17 @@ Result<std::unique_ptr<Source>> PlantsSource::create(const SourceBuildContext& c
     }
     if (Status attached = made.value()->attachModels(context); !attached) {
         return attached.error();
+    }
+    Result<const Source*> exclude = context.input("exclude", false);
+    if (!exclude) {
+        return exclude.error();
+    }
+    if (exclude.value() != nullptr) {
+        const FeatureSource* footprints = FeatureSource::from(exclude.value());
+        if (footprints == nullptr) {
+            return Error{reader.where("exclude") + "'exclude' must be a features source"};
+        }
+        made.value()->excludeInside(footprints);
     }
     return std::unique_ptr<Source>(std::move(made.value()));
 }

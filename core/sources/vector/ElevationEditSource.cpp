@@ -6,6 +6,7 @@
 
 #include "sylva/core/base/Hash.h"
 #include "sylva/core/geo/Ellipsoid.h"
+#include "sylva/core/sources/GroundSampler.h"
 #include "sylva/core/sources/vector/CoverageRasterizer.h"
 
 namespace sylva {
@@ -109,6 +110,7 @@ public:
     float apply(float h, double weight, const glm::dvec2& centre) const {
         switch (parameters_.mode) {
             case Mode::Flatten:
+            case Mode::Level:
                 return static_cast<float>(h + weight * (value_ - h));
             case Mode::Raise:
                 return static_cast<float>(h + weight * value_);
@@ -202,6 +204,13 @@ Result<TilePointer> ElevationEditSource::produce(const TileKey& key, TileProvide
         if (!value) {
             return value.error();
         }
+        if (parameters_.mode == Mode::Level) {
+            Result<double> ground = meanHeightUnder(feature, provider);
+            if (!ground) {
+                return ground.error();
+            }
+            value = ground.value() + value.value();
+        }
         rasterizer.fillPolygon(feature.parts, hit.longitudeShift, coverage);
         // Texel range touched: the feature's bounds grown by the feather.
         const glm::dvec2 a = rasterizer.toGrid(
@@ -231,6 +240,33 @@ Result<TilePointer> ElevationEditSource::produce(const TileKey& key, TileProvide
     return TilePointer(std::move(tile));
 }
 
+Result<double> ElevationEditSource::meanHeightUnder(const Feature& feature,
+                                                    TileProvider& provider) const {
+    GroundSampler ground(*input_, provider, kLevelSampleLevel);
+    double sum = 0.0;
+    int count = 0;
+    const auto add = [&](const glm::dvec2& point) -> Status {
+        Result<double> height = ground.heightAt(point.y, point.x);
+        if (!height) {
+            return height.error();
+        }
+        sum += height.value();
+        ++count;
+        return Status::success();
+    };
+    for (const std::vector<glm::dvec2>& ring : feature.parts) {
+        for (std::size_t i = 0; i + 1 < ring.size(); ++i) {
+            if (Status status = add(ring[i]); !status) {
+                return status.error();
+            }
+        }
+    }
+    if (Status status = add(centroid(feature)); !status) {
+        return status.error();
+    }
+    return sum / count;
+}
+
 Result<std::unique_ptr<Source>> ElevationEditSource::create(const SourceBuildContext& context) {
     const BlockReader& reader = context.reader;
     Result<const Source*> input = context.input("input", true);
@@ -256,6 +292,7 @@ Result<std::unique_ptr<Source>> ElevationEditSource::create(const SourceBuildCon
             p.mode = word->text == "raise"   ? Mode::Raise
                      : word->text == "lower" ? Mode::Lower
                      : word->text == "slope" ? Mode::Slope
+                     : word->text == "level" ? Mode::Level
                                              : Mode::Flatten;
         }
     }

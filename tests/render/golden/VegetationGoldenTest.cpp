@@ -113,7 +113,7 @@ protected:
         settings.ocean = false;
         settings.vegetation = vegetation;
         settings.instanceBatches = batches;
-        const TerrainLayers layers{elevation_, color_, normals_, {}};
+        const TerrainLayers layers{elevation_, color_, normals_, {}, {}};
         Result<Image> image = renderer_->render(layers, *evaluator_, c, settings);
         EXPECT_TRUE(image) << image.error().message;
         return image ? image.value() : Image{};

@@ -23,6 +23,7 @@ enum class PortType {
     Features,    // vector features (points, lines, polygons)
     Instances,   // plant instances
     PlantModel,  // one plant species: source mesh and LoD (PlantModelSource)
+    Meshes,      // 3D geometry on the terrain: buildings, placed models (MeshSource)
 };
 
 const char* portTypeName(PortType type);  // "elevation", "image", ..., "plant_model"
@@ -101,5 +102,7 @@ private:
 void addLanguageSchema(SchemaRegistry& registry);
 // Registers the analysis blocks (ztv); schema/AnalysisSchema.cpp.
 void addAnalysisSchema(SchemaRegistry& registry);
+// The `buildings` and `objects` source kinds (ObjectsSchema.cpp).
+void addObjectsSchema(SchemaRegistry& registry);
 
 }  // namespace sylva

@@ -19,6 +19,7 @@
 #include "sylva/core/sources/graph/SourceGraph.h"
 #include "sylva/core/vegetation/VegetationStream.h"
 #include "sylva/render/gl/Framebuffer.h"
+#include "sylva/render/objects/MeshRenderer.h"
 #include "sylva/render/scene/SampleAccumulator.h"
 #include "sylva/render/shading/ShadingPass.h"
 #include "sylva/render/terrain/TerrainRenderer.h"
@@ -43,6 +44,7 @@ struct RenderSettings {
     // render with a sub-pixel shifted projection, averaged in linear light (SampleAccumulator).
     int samples = 1;
     VegetationSettings vegetation;
+    MeshSettings meshes;  // buildings and models of the scenario's `meshes` layers
     // Plants handed in directly (tests, benchmarks), drawn with the species of
     // vegetation(); the `plants` layers of the scenario are streamed besides.
     std::vector<const InstanceBatch*> instanceBatches;
@@ -63,6 +65,8 @@ struct RenderStatistics {
     double gpuSeconds = 0;             // draw + shade (every sample) + read-back
     double terrainPassSeconds = 0;     // the terrain's G-buffer passes alone (to glFinish)
     double vegetationPassSeconds = 0;  // selection, upload and the plants' G-buffer passes
+    double meshPassSeconds = 0;        // buildings and models: streaming and G-buffer pass
+    MeshStatistics meshes;
     VegetationStatistics vegetation;
     VegetationStreamStatistics vegetationStream;
 };
@@ -88,6 +92,7 @@ public:
     double near() const { return near_; }
     TerrainRenderer& terrain() { return *terrain_; }
     VegetationRenderer& vegetation() { return *vegetation_; }
+    MeshRenderer& meshes() { return *meshes_; }
 
 private:
     SceneRenderer() = default;
@@ -101,16 +106,24 @@ private:
                                                                TileProvider& provider,
                                                                const Camera& camera,
                                                                const RenderSettings& settings);
-    // One sample: terrain and plants into the G-buffer with `projection`, shaded into output_.
+    // One sample: terrain, buildings/models and plants into the G-buffer with `projection`, shaded into output_.
     void drawSample(const Camera& camera, const glm::dmat4& projection, const LevelRange& levels,
                     const std::vector<const InstanceBatch*>& batches,
                     const RenderSettings& settings);
     // The stream layers of the scenario's plants sources; registers each species'
     // asset with the vegetation renderer on first use (building it may take seconds).
     Result<std::vector<VegetationStreamLayer>> vegetationLayers(const TerrainLayers& layers);
+    // Makes the scenario's buildings and models near the camera resident (once per image).
+    Status streamMeshes(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
+                        const RenderSettings& settings);
+    // Draws the resident buildings and models into the G-buffer (once per sample).
+    void drawMeshes(const Camera& camera, const glm::dmat4& projection,
+                    const RenderSettings& settings);
 
     std::unique_ptr<TerrainRenderer> terrain_;
     std::unique_ptr<VegetationRenderer> vegetation_;
+    std::unique_ptr<MeshRenderer> meshes_;
+    bool meshesStreamed_ = false;  // this image's scenario has mesh layers
     VegetationStream vegetationStream_;
     std::map<std::uint64_t, std::uint32_t> speciesOfModel_;  // model content hash -> species
     std::unique_ptr<ShadingPass> shading_;

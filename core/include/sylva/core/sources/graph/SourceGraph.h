@@ -21,6 +21,7 @@
 namespace sylva {
 
 class PlantsSource;
+class MeshSource;
 
 // The sources that feed the terrain clipmaps of one scenario.
 struct TerrainLayers {
@@ -28,6 +29,7 @@ struct TerrainLayers {
     const Source* color = nullptr;            // may be null: a neutral grey is drawn
     const Source* normals = nullptr;          // never null: derived from elevation if not given
     std::vector<const PlantsSource*> plants;  // drawn by the vegetation renderer (may be empty)
+    std::vector<const MeshSource*> meshes;    // buildings and objects (the mesh renderer)
 };
 
 class SourceGraph {

@@ -106,6 +106,12 @@ public:
     // fails for a species without a model, so no entry is nullptr.
     const std::vector<const PlantModelSource*>& models() const { return models_; }
 
+    // Keeps no instance inside the polygons of `footprints` (buildings, paved areas of a
+    // proposal): every instance, scattered or from points, whose position lies inside one
+    // is dropped. Call once, before the source produces anything; adds `footprints` to
+    // the inputs and the content hash.
+    void excludeInside(const FeatureSource* footprints);
+
     // `source` as a PlantsSource when it gives instances, else nullptr.
     static const PlantsSource* from(const Source* source);
 
@@ -118,6 +124,7 @@ private:
     struct RowCells;     // one row of the global scattering grid
     Result<std::vector<PlantInstance>> generate(const TileKey& key, const Window& window,
                                                 TileProvider& provider) const;
+    Status dropExcluded(const Window& window, std::vector<PlantInstance>& out) const;
     // Point features: one instance per point the window keeps.
     Status placePoints(const std::vector<FeatureHit>& hits, const FeatureCollection& features,
                        const TileKey& key, const Window& window, InputTiles& inputs,
@@ -148,6 +155,8 @@ private:
     const Source* elevation_;
     const Source* density_;
     const FeatureSource* features_;
+    const FeatureSource* exclude_ = nullptr;
+    std::uint64_t parameterHash_ = 0;
     PlantsParameters parameters_;
     std::vector<std::string> speciesNames_;
     std::vector<const PlantModelSource*> models_;        // per species

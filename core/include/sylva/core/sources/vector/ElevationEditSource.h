@@ -4,7 +4,10 @@
 //   flatten: the polygon becomes level at `height`;
 //   raise / lower: the polygon moves up / down by `amount`;
 //   slope: the polygon becomes the plane through its centroid at `height`, rising
-//          with `gradient` (metres per metre) towards the azimuth `direction`.
+//          with `gradient` (metres per metre) towards the azimuth `direction`;
+//   level: the polygon becomes level at the mean height of the input under it (at every
+//          vertex and the centroid, bilinear at pyramid level kLevelSampleLevel, the
+//          grid buildings sample), plus `amount`: building plots, pads of turbines.
 // Heights and amounts may come per feature from attributes (height_attribute,
 // amount_attribute; numbers in metres). Edits apply in feature order.
 //
@@ -29,9 +32,9 @@
 namespace sylva {
 
 struct ElevationEditParameters {
-    enum class Mode { Flatten, Raise, Lower, Slope } mode = Mode::Flatten;
+    enum class Mode { Flatten, Raise, Lower, Slope, Level } mode = Mode::Flatten;
     double height = 0.0;     // metres (flatten, slope)
-    double amount = 0.0;     // metres (raise, lower)
+    double amount = 0.0;     // metres (raise, lower, level)
     double gradient = 0.0;   // metres per metre (slope)
     double direction = 0.0;  // radians, azimuth of steepest ascent, clockwise from north
     double feather = 0.0;    // metres, outside the polygon
@@ -49,7 +52,13 @@ public:
 
     const Source& input() const { return *input_; }
 
+    // The pyramid level `level` samples the input at (texels of about 1.2 m).
+    static constexpr int kLevelSampleLevel = 16;
+
 private:
+    // The mean input height under a polygon (`level` mode).
+    Result<double> meanHeightUnder(const Feature& feature, TileProvider& provider) const;
+
     const Source* input_;
     const FeatureSource* features_;
     ElevationEditParameters parameters_;

@@ -1,0 +1,268 @@
+#include "sylva/bench/ObjectsBenchmark.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <random>
+
+#include <unistd.h>
+
+#include "sylva/core/geo/Ellipsoid.h"
+#include "sylva/core/scheduler/Scheduler.h"
+#include "sylva/core/sources/objects/BuildingsSource.h"
+#include "sylva/core/sources/objects/ObjectsSource.h"
+#include "sylva/core/sources/raster/HypsometricSource.h"
+#include "sylva/core/sources/raster/NoiseSource.h"
+#include "sylva/core/sources/raster/NormalMapSource.h"
+#include "sylva/render/scene/SceneRenderer.h"
+
+namespace sylva::bench {
+
+using namespace sylva::render;
+using render::Image;
+
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+constexpr double kCentreLatitude = 46.0 * kDegree;
+constexpr double kCentreLongitude = 8.0 * kDegree;
+constexpr double kAltitudes[] = {800e3, 100e3, 10e3, 1e3, 50.0};  // as bench terrain
+
+double median(std::vector<double> values) {
+    if (values.empty()) {
+        return 0.0;
+    }
+    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+    return values[values.size() / 2];
+}
+
+NoiseParameters relief() {  // the terrain benchmark's DEM
+    NoiseParameters parameters;
+    parameters.seed = 7;
+    parameters.amplitude = 3000;
+    parameters.baseWavelength = 3.0e6;
+    parameters.ridges = 0.6;
+    parameters.ridgeWavelength = 3.0e5;
+    parameters.roughness = 0.7;
+    return parameters;
+}
+
+std::vector<Camera> flight(const NoiseSource& noise, int framesPerSegment) {
+    std::vector<Camera> frames;
+    const int segments = int(std::size(kAltitudes)) - 1;
+    const int total = segments * framesPerSegment + 1;
+    for (int frame = 0; frame < total; ++frame) {
+        const double progress = double(frame) / (total - 1);
+        const int segment = std::min(frame / framesPerSegment, segments - 1);
+        const double local = double(frame - segment * framesPerSegment) / framesPerSegment;
+        const double altitude = std::exp(std::log(kAltitudes[segment]) * (1 - local) +
+                                         std::log(kAltitudes[segment + 1]) * local);
+        const double latitude = kCentreLatitude - 0.6 * kDegree * (1 - progress);
+        const double longitude = kCentreLongitude + 0.2 * kDegree * (1 - progress);
+        const double pitch = (-85.0 + 75.0 * std::pow(progress, 0.7)) * kDegree;
+        const double ground = noise.height(Ellipsoid::surfaceNormal(latitude, longitude), 1.0);
+        Camera camera;
+        camera.geodetic = {latitude, longitude, std::max(ground, 0.0) + altitude};
+        camera.position = Ellipsoid::toEcef(camera.geodetic);
+        camera.axes = Camera::axesFromAngles(camera.geodetic, 10 * kDegree, pitch, 0.0);
+        camera.verticalFov = 60 * kDegree;
+        frames.push_back(camera);
+    }
+    return frames;
+}
+
+// A generated city: `count` rectangles of 8–20 m on a jittered 30 m grid south of the
+// flight's end (where the last frames look), heights 4–40 m, every third with a hip roof.
+std::filesystem::path writeCity(const std::filesystem::path& folder, int count) {
+    const auto path = folder / "city.geojson";
+    std::ofstream out(path);
+    out << R"({"type":"FeatureCollection","features":[)";
+    const int side = int(std::ceil(std::sqrt(double(count))));
+    const double east =
+        Ellipsoid::primeVerticalRadius(kCentreLatitude) * std::cos(kCentreLatitude) * kDegree;
+    const double north = Ellipsoid::meridionalRadius(kCentreLatitude) * kDegree;
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    char text[160];
+    for (int i = 0; i < count; ++i) {
+        const double x = (i % side - side / 2) * 30.0 + 4 * unit(random);
+        const double y = (i / side - side / 2) * 30.0 + 4 * unit(random);
+        const double w = 8 + 12 * unit(random), d = 8 + 12 * unit(random);
+        std::string ring;
+        for (int k = 0; k <= 4; ++k) {
+            const double cx = (k == 1 || k == 2) ? w / 2 : -w / 2;
+            const double cy = (k == 2 || k == 3) ? d / 2 : -d / 2;
+            std::snprintf(text, sizeof text, "%s[%.8f,%.8f]", k ? "," : "", 8.0 + (x + cx) / east,
+                          46.0 + (y + cy) / north);
+            ring += text;
+        }
+        std::snprintf(text, sizeof text, R"(%s{"type":"Feature","id":%d,"properties":{"h":%.1f,)",
+                      i ? "," : "", i + 1, 4 + 36 * unit(random) * unit(random));
+        out << text << R"("roof":")" << (i % 3 == 0 ? "hip" : "flat")
+            << R"("},"geometry":{"type":"Polygon","coordinates":[[)" << ring << "]]}}";
+    }
+    out << "]}";
+    return path;
+}
+
+// Turbine sites on a 250 m grid around the flight's end.
+std::filesystem::path writeTurbineSites(const std::filesystem::path& folder, int count) {
+    const auto path = folder / "turbines.geojson";
+    std::ofstream out(path);
+    out << R"({"type":"FeatureCollection","features":[)";
+    const int side = int(std::ceil(std::sqrt(double(count))));
+    const double east =
+        Ellipsoid::primeVerticalRadius(kCentreLatitude) * std::cos(kCentreLatitude) * kDegree;
+    const double north = Ellipsoid::meridionalRadius(kCentreLatitude) * kDegree;
+    char text[200];
+    for (int i = 0; i < count; ++i) {
+        const double x = (i % side - side / 2) * 250.0, y = (i / side - side / 2) * 250.0 - 3000;
+        std::snprintf(text, sizeof text,
+                      R"(%s{"type":"Feature","id":%d,"properties":{"angle":%d},"geometry":)"
+                      R"({"type":"Point","coordinates":[%.8f,%.8f]}})",
+                      i ? "," : "", i + 1, (i * 37) % 120, 8.0 + x / east, 46.0 + y / north);
+        out << text;
+    }
+    out << "]}";
+    return path;
+}
+
+// A turbine as OBJ: tower, nacelle and a box standing for the rotor's disc (OBJ groups
+// turn about +Z, so the rotor box turns horizontally here: only the drawing cost counts).
+std::filesystem::path writeTurbineModel(const std::filesystem::path& folder) {
+    const auto path = folder / "turbine.obj";
+    std::ofstream out(path);
+    int base = 1;
+    const auto box = [&](const char* name, double x0, double x1, double y0, double y1, double z0,
+                         double z1) {
+        out << "o " << name << "\n";
+        for (int i = 0; i < 8; ++i) {
+            out << "v " << (i & 1 ? x1 : x0) << " " << (i & 2 ? y1 : y0) << " " << (i & 4 ? z1 : z0)
+                << "\n";
+        }
+        const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                 {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+        for (const auto& f : faces) {
+            out << "f " << base + f[0] << " " << base + f[1] << " " << base + f[2] << " "
+                << base + f[3] << "\n";
+        }
+        base += 8;
+    };
+    box("tower", -2, 2, -2, 2, 0, 78.5);
+    box("nacelle", -1.5, 1.5, -6, 2, 78.5, 81.5);
+    box("rotor", -40, 40, 2.5, 3.5, 79, 81);
+    return path;
+}
+
+struct Flight {
+    std::vector<double> seconds;
+};
+
+Result<Flight> fly(SceneRenderer& renderer, const TerrainLayers& layers, Scheduler& scheduler,
+                   const std::vector<Camera>& frames, const RenderSettings& settings) {
+    Flight flight;
+    for (int pass = 0; pass < 2; ++pass) {  // warm-up, then timed
+        for (const Camera& camera : frames) {
+            const auto start = std::chrono::steady_clock::now();
+            Result<Image> image = renderer.render(layers, scheduler, camera, settings);
+            if (!image) {
+                return image.error();
+            }
+            if (pass == 1) {
+                flight.seconds.push_back(
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                        .count());
+            }
+        }
+    }
+    return flight;
+}
+
+}  // namespace
+
+std::string ObjectsBenchmarkResult::json() const {
+    return metricsJson("objects", metrics, NumberFormat{NumberFormat::Notation::General, 6});
+}
+
+Result<ObjectsBenchmarkResult> runObjectsBenchmark(const ShaderLibrary& library,
+                                                   const ObjectsBenchmarkOptions& options) {
+    const auto folder = std::filesystem::temp_directory_path() /
+                        ("sylva-bench-objects-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(folder);
+    const NoiseSource elevation("dem", relief());
+    const NormalMapSource normals("dem.normals", &elevation, 1.0);
+    const HypsometricSource colour("dem.colour", &elevation, &normals, HypsometricParameters{});
+    SchedulerOptions schedulerOptions;
+    schedulerOptions.format = TileFormat{256, 2};
+    Scheduler scheduler(schedulerOptions);
+
+    FeatureSource footprints("city", writeCity(folder, options.buildings), {});
+    BuildingsParameters city;
+    city.heightAttribute = "h";
+    city.roofAttribute = "roof";
+    const BuildingsSource buildings("city", &footprints, &elevation, city);
+    const auto buildStart = std::chrono::steady_clock::now();
+    Result<std::vector<TileKey>> keys = buildings.tileKeys();
+    if (!keys) {
+        return keys.error();
+    }
+    double triangles = 0;
+    for (const TileKey& key : keys.value()) {
+        Result<std::shared_ptr<const MeshTile>> tile = buildings.tile(key, scheduler);
+        if (!tile) {
+            return tile.error();
+        }
+        triangles += double(tile.value()->geometry.indices.size() / 3);
+    }
+    const double buildSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
+
+    FeatureSource sites("sites", writeTurbineSites(folder, options.turbines), {});
+    ObjectsParameters farm;
+    farm.model = writeTurbineModel(folder);
+    farm.partAttributes = {{"rotor", "angle"}};
+    const ObjectsSource turbines("farm", &sites, &elevation, farm);
+
+    Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(library, {});
+    if (!renderer) {
+        return renderer.error();
+    }
+    RenderSettings settings;
+    settings.width = options.width;
+    settings.height = options.height;
+    settings.ocean = false;
+    settings.sunDirection = Ellipsoid::surfaceNormal(5 * kDegree, -40 * kDegree);
+    settings.exposure = 0.45;
+    const std::vector<Camera> frames = flight(elevation, options.framesPerSegment);
+    std::vector<double> medians;
+    for (const std::vector<const MeshSource*>& meshes :
+         {std::vector<const MeshSource*>{}, std::vector<const MeshSource*>{&buildings},
+          std::vector<const MeshSource*>{&turbines}}) {
+        const TerrainLayers layers{&elevation, &colour, &normals, {}, meshes};
+        Result<Flight> flown = fly(*renderer.value(), layers, scheduler, frames, settings);
+        if (!flown) {
+            return flown.error();
+        }
+        medians.push_back(median(flown.value().seconds));
+    }
+    std::filesystem::remove_all(folder);
+    ObjectsBenchmarkResult result;
+    result.metrics = {
+        {"buildings_frame_ratio", medians[1] / medians[0]},
+        {"turbines_frame_ratio", medians[2] / medians[0]},
+        {"buildings_build_s_100k", buildSeconds * 100000.0 / std::max(options.buildings, 1)},
+        {"buildings", double(options.buildings)},
+        {"buildings_triangles", triangles},
+        {"turbines", double(options.turbines)},
+        {"terrain_frame_ms", medians[0] * 1e3},
+        {"buildings_frame_ms", medians[1] * 1e3},
+        {"turbines_frame_ms", medians[2] * 1e3},
+    };
+    return result;
+}
+
+}  // namespace sylva::bench

@@ -1,0 +1,34 @@
+#include "sylva/core/sources/objects/MeshSource.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace sylva {
+
+MeshSource::MeshSource(std::string name, std::string kind)
+    : Source(std::move(name), std::move(kind), PortType::Meshes, 0) {}
+
+Result<TilePointer> MeshSource::produce(const TileKey& key, TileProvider&) const {
+    return Error{"source '" + name() + "' (" + kind() + ") gives meshes, not raster tiles (tile " +
+                 key.toString() + ")"};
+}
+
+TileKey MeshSource::keyOf(const glm::dvec2& point) {
+    const double pi = std::numbers::pi;
+    const int columns = TileKey::columns(kTileLevel, 0), rows = TileKey::rows(kTileLevel);
+    double u = (point.x + pi) / (2 * pi);
+    u -= std::floor(u);
+    const int x = std::clamp(static_cast<int>(u * columns), 0, columns - 1);
+    const int y = std::clamp(static_cast<int>((pi / 2 - point.y) / pi * rows), 0, rows - 1);
+    return TileKey{kTileLevel, 0, x, y};
+}
+
+const MeshSource* MeshSource::from(const Source* source) {
+    if (source == nullptr || source->output() != PortType::Meshes) {
+        return nullptr;
+    }
+    return dynamic_cast<const MeshSource*>(source);
+}
+
+}  // namespace sylva

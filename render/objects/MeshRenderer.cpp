@@ -1,0 +1,314 @@
+#include "sylva/render/objects/MeshRenderer.h"
+
+#include <glad/gl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+#include <set>
+
+#include "sylva/core/geo/Ellipsoid.h"
+
+namespace sylva::render {
+
+struct MeshGpuGeometry {
+    GlVertexArray vertexArray;
+    GlBuffer vertexBuffer, indexBuffer;
+    GLsizei indexCount = 0;
+};
+
+struct MeshRenderer::ResidentTile {
+    std::shared_ptr<const MeshTile> tile;
+    std::unique_ptr<MeshGpuGeometry> geometry;  // null when the tile has no static triangles
+};
+
+namespace {
+
+constexpr GLuint kInstanceBinding = 1;
+constexpr std::size_t kFloatsPerInstance = 12;  // three rows of a 3×4 matrix
+
+std::unique_ptr<MeshGpuGeometry> upload(const MeshGeometry& geometry) {
+    auto gpu = std::make_unique<MeshGpuGeometry>();
+    gpu->vertexArray = createGlVertexArray();
+    gpu->vertexBuffer = createGlBuffer();
+    gpu->indexBuffer = createGlBuffer();
+    glNamedBufferStorage(gpu->vertexBuffer.get(),
+                         GLsizeiptr(geometry.vertices.size() * sizeof(MeshVertex)),
+                         geometry.vertices.data(), 0);
+    glNamedBufferStorage(gpu->indexBuffer.get(),
+                         GLsizeiptr(geometry.indices.size() * sizeof(std::uint32_t)),
+                         geometry.indices.data(), 0);
+    gpu->indexCount = GLsizei(geometry.indices.size());
+    const GLuint va = gpu->vertexArray.get();
+    glVertexArrayVertexBuffer(va, 0, gpu->vertexBuffer.get(), 0, sizeof(MeshVertex));
+    glVertexArrayElementBuffer(va, gpu->indexBuffer.get());
+    glEnableVertexArrayAttrib(va, 0);
+    glVertexArrayAttribFormat(va, 0, 3, GL_FLOAT, GL_FALSE, offsetof(MeshVertex, position));
+    glEnableVertexArrayAttrib(va, 1);
+    glVertexArrayAttribFormat(va, 1, 3, GL_FLOAT, GL_FALSE, offsetof(MeshVertex, normal));
+    glEnableVertexArrayAttrib(va, 2);
+    glVertexArrayAttribFormat(va, 2, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(MeshVertex, color));
+    for (GLuint a = 0; a < 3; ++a) {
+        glVertexArrayAttribBinding(va, a, 0);
+    }
+    for (GLuint row = 0; row < 3; ++row) {
+        glEnableVertexArrayAttrib(va, 3 + row);
+        glVertexArrayAttribFormat(va, 3 + row, 4, GL_FLOAT, GL_FALSE,
+                                  GLuint(row * 4 * sizeof(float)));
+        glVertexArrayAttribBinding(va, 3 + row, kInstanceBinding);
+    }
+    glVertexArrayBindingDivisor(va, kInstanceBinding, 1);
+    return gpu;
+}
+
+// Appends the rows of the model → view transform p ↦ linear * p + translation.
+void appendInstance(std::vector<float>& out, const glm::dmat3& linear,
+                    const glm::dvec3& translation) {
+    for (int row = 0; row < 3; ++row) {
+        out.push_back(float(linear[0][row]));
+        out.push_back(float(linear[1][row]));
+        out.push_back(float(linear[2][row]));
+        out.push_back(float(translation[row]));
+    }
+}
+
+// Whether a sphere (view-space centre, radius) may be inside the frustum of `projection`
+// (planes from the rows of the matrix: Gribb & Hartmann 2001; for reversed-Z the clip
+// depth range is 0 ≤ z ≤ w).
+bool sphereVisible(const glm::dmat4& projection, const glm::dvec3& center, double radius) {
+    const glm::dvec4 c(center, 1.0);
+    const auto row = [&](int i) {
+        return glm::dvec4(projection[0][i], projection[1][i], projection[2][i], projection[3][i]);
+    };
+    const glm::dvec4 planes[6] = {row(3) + row(0), row(3) - row(0), row(3) + row(1),
+                                  row(3) - row(1), row(2),          row(3) - row(2)};
+    for (const glm::dvec4& plane : planes) {
+        const double length = glm::length(glm::dvec3(plane));
+        if (length > 0.0 && glm::dot(plane, c) < -radius * length) {
+            return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<MeshRenderer>> MeshRenderer::create(const ShaderLibrary& library) {
+    std::unique_ptr<MeshRenderer> renderer(new MeshRenderer());
+    Result<ShaderProgram> mesh = ShaderProgram::create(
+        library,
+        {{GL_VERTEX_SHADER, "objects/mesh.vert"}, {GL_FRAGMENT_SHADER, "objects/mesh.frag"}});
+    if (!mesh) {
+        return mesh.error();
+    }
+    renderer->meshProgram_ = std::move(mesh.value());
+    Result<ShaderProgram> depth = ShaderProgram::create(
+        library,
+        {{GL_VERTEX_SHADER, "objects/mesh.vert"}, {GL_FRAGMENT_SHADER, "objects/depth.frag"}});
+    if (!depth) {
+        return depth.error();
+    }
+    renderer->depthProgram_ = std::move(depth.value());
+    renderer->instanceBuffer_ = createGlBuffer();
+    return renderer;
+}
+
+MeshRenderer::~MeshRenderer() = default;
+
+namespace {
+
+// The keys of level MeshSource::kTileLevel whose tiles intersect `bounds` and lie within
+// `distance` metres (on the ground) of (latitude, longitude).
+std::vector<TileKey> keysNear(const GeographicBounds& bounds, double latitude, double longitude,
+                              double distance) {
+    const double pi = std::numbers::pi;
+    const double north = distance / Ellipsoid::meridionalRadius(latitude);
+    const double east =
+        distance / (Ellipsoid::primeVerticalRadius(latitude) * std::max(std::cos(latitude), 1e-6));
+    const double south = std::max(bounds.south, latitude - north);
+    const double top = std::min(bounds.north, latitude + north);
+    // Bring the bounds' longitudes next to the camera's (features may be unwrapped).
+    const double shift =
+        2 * pi * std::round((longitude - 0.5 * (bounds.west + bounds.east)) / (2 * pi));
+    const double west = std::max(bounds.west + shift, longitude - east);
+    const double eastEdge = std::min(bounds.east + shift, longitude + east);
+    std::vector<TileKey> keys;
+    if (south > top || west > eastEdge) {
+        return keys;
+    }
+    const int level = MeshSource::kTileLevel;
+    const int columns = TileKey::columns(level, 0), rows = TileKey::rows(level);
+    const auto column = [&](double lon) {
+        return int(std::floor((lon + pi) / (2 * pi) * columns));
+    };
+    const auto rowOf = [&](double lat) {
+        return std::clamp(int(std::floor((pi / 2 - lat) / pi * rows)), 0, rows - 1);
+    };
+    for (int y = rowOf(top); y <= rowOf(south); ++y) {
+        for (int x = column(west); x <= column(eastEdge); ++x) {
+            keys.push_back(TileKey{level, 0, ((x % columns) + columns) % columns, y});
+        }
+    }
+    return keys;
+}
+
+}  // namespace
+
+Status MeshRenderer::update(const std::vector<const MeshSource*>& sources, TileProvider& provider,
+                            const Camera& camera, const MeshSettings& settings) {
+    const auto start = std::chrono::steady_clock::now();
+    statistics_.tilesBuilt = 0;
+    std::set<std::pair<std::uint64_t, TileKey>> wanted;
+    for (const MeshSource* source : sources) {
+        Result<GeographicBounds> bounds = source->bounds();
+        if (!bounds) {
+            return bounds.error();
+        }
+        for (const TileKey& key : keysNear(bounds.value(), camera.geodetic.latitude,
+                                           camera.geodetic.longitude, settings.maximumDistance)) {
+            const std::pair<std::uint64_t, TileKey> id{source->contentHash(), key};
+            wanted.insert(id);
+            if (tiles_.count(id) != 0) {
+                continue;
+            }
+            Result<std::shared_ptr<const MeshTile>> tile = source->tile(key, provider);
+            if (!tile) {
+                return tile.error();
+            }
+            auto resident = std::make_unique<ResidentTile>();
+            resident->tile = tile.value();
+            if (!tile.value()->geometry.empty()) {
+                resident->geometry = upload(tile.value()->geometry);
+            }
+            tiles_.emplace(id, std::move(resident));
+            ++statistics_.tilesBuilt;
+        }
+    }
+    std::erase_if(tiles_, [&](const auto& entry) { return wanted.count(entry.first) == 0; });
+    std::erase_if(models_, [](const auto& entry) { return entry.second.model.use_count() == 1; });
+    statistics_.residentTiles = tiles_.size();
+    statistics_.buildSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return Status::success();
+}
+
+const std::vector<std::unique_ptr<MeshGpuGeometry>>& MeshRenderer::modelParts(
+    const std::shared_ptr<const MeshModel>& model) {
+    auto found = models_.find(model.get());
+    if (found == models_.end()) {
+        ModelEntry entry;
+        entry.model = model;
+        for (const ModelPart& part : model->parts) {
+            entry.parts.push_back(part.geometry.empty() ? nullptr : upload(part.geometry));
+        }
+        found = models_.emplace(model.get(), std::move(entry)).first;
+    }
+    return found->second.parts;
+}
+
+void MeshRenderer::drawModel(const ResidentTile& resident, const MeshDrawView& view) {
+    const MeshTile& tile = *resident.tile;
+    const MeshModel& model = *tile.model;
+    const std::vector<std::unique_ptr<MeshGpuGeometry>>& parts = modelParts(tile.model);
+    // Instances grouped by part: part p's instances are [p × count, (p + 1) × count).
+    std::vector<const ModelPlacement*> visible;
+    for (const ModelPlacement& placement : tile.placements) {
+        const double scale = glm::length(placement.axes[0]);
+        const glm::dvec3 center =
+            view.rotation * (placement.position + placement.axes * model.boundsCenter - view.eye);
+        const double radius = model.boundsRadius * scale;
+        if (!sphereVisible(view.projection, center, radius)) {
+            continue;
+        }
+        if (view.pixelAngle > 0.0 && 2.0 * radius < view.pixelAngle * glm::length(center) * 1.0) {
+            continue;  // below a pixel: the terrain colour stands for it
+        }
+        visible.push_back(&placement);
+    }
+    if (visible.empty()) {
+        return;
+    }
+    instanceScratch_.clear();
+    for (std::size_t p = 0; p < model.parts.size(); ++p) {
+        for (const ModelPlacement* placement : visible) {
+            const std::vector<glm::dmat4> transforms = model.partTransforms(placement->partAngles);
+            const glm::dmat4& part = transforms[p];
+            const glm::dmat3 linear = view.rotation * placement->axes * glm::dmat3(part);
+            const glm::dvec3 translation = view.rotation * (placement->position - view.eye +
+                                                            placement->axes * glm::dvec3(part[3]));
+            appendInstance(instanceScratch_, linear, translation);
+        }
+    }
+    const std::size_t bytes = instanceScratch_.size() * sizeof(float);
+    glNamedBufferData(instanceBuffer_.get(), GLsizeiptr(bytes), instanceScratch_.data(),
+                      GL_STREAM_DRAW);
+    for (std::size_t p = 0; p < parts.size(); ++p) {
+        if (!parts[p]) {
+            continue;
+        }
+        const GLuint va = parts[p]->vertexArray.get();
+        glVertexArrayVertexBuffer(va, kInstanceBinding, instanceBuffer_.get(),
+                                  GLintptr(p * visible.size() * kFloatsPerInstance * sizeof(float)),
+                                  kFloatsPerInstance * sizeof(float));
+        glBindVertexArray(va);
+        glDrawElementsInstanced(GL_TRIANGLES, parts[p]->indexCount, GL_UNSIGNED_INT, nullptr,
+                                GLsizei(visible.size()));
+        statistics_.trianglesDrawn += std::size_t(parts[p]->indexCount / 3) * visible.size();
+    }
+    statistics_.placementsDrawn += visible.size();
+}
+
+void MeshRenderer::draw(const MeshDrawView& view, bool depthOnly) {
+    statistics_.tilesDrawn = 0;
+    statistics_.placementsDrawn = 0;
+    statistics_.trianglesDrawn = 0;
+    ShaderProgram& program = depthOnly ? depthProgram_ : meshProgram_;
+    program.use();
+    program.setMat4("uProjection", glm::mat4(view.projection));
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);
+    glDepthMask(GL_TRUE);
+    // Static geometry: one instance per tile, all tiles' transforms in one buffer.
+    std::vector<const ResidentTile*> drawn;
+    instanceScratch_.clear();
+    for (const auto& [id, resident] : tiles_) {
+        const MeshTile& tile = *resident->tile;
+        if (!resident->geometry ||
+            !sphereVisible(view.projection, view.rotation * (tile.boundsCenter - view.eye),
+                           tile.boundsRadius)) {
+            continue;
+        }
+        appendInstance(instanceScratch_, view.rotation, view.rotation * (tile.origin - view.eye));
+        drawn.push_back(resident.get());
+    }
+    if (!drawn.empty()) {
+        glNamedBufferData(instanceBuffer_.get(),
+                          GLsizeiptr(instanceScratch_.size() * sizeof(float)),
+                          instanceScratch_.data(), GL_STREAM_DRAW);
+        for (std::size_t i = 0; i < drawn.size(); ++i) {
+            const MeshGpuGeometry& geometry = *drawn[i]->geometry;
+            glVertexArrayVertexBuffer(geometry.vertexArray.get(), kInstanceBinding,
+                                      instanceBuffer_.get(),
+                                      GLintptr(i * kFloatsPerInstance * sizeof(float)),
+                                      kFloatsPerInstance * sizeof(float));
+            glBindVertexArray(geometry.vertexArray.get());
+            glDrawElements(GL_TRIANGLES, geometry.indexCount, GL_UNSIGNED_INT, nullptr);
+            statistics_.trianglesDrawn += std::size_t(geometry.indexCount / 3);
+        }
+        statistics_.tilesDrawn = drawn.size();
+    }
+    // Placed models: instanced per part.
+    for (const auto& [id, resident] : tiles_) {
+        if (resident->tile->model && !resident->tile->placements.empty() &&
+            sphereVisible(view.projection,
+                          view.rotation * (resident->tile->boundsCenter - view.eye),
+                          resident->tile->boundsRadius)) {
+            drawModel(*resident, view);
+        }
+    }
+    glBindVertexArray(0);
+}
+
+}  // namespace sylva::render
