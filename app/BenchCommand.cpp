@@ -75,7 +75,7 @@ struct CommandSuite {
 const CommandSuite kCommandSuites[] = {
     {"terrain", runTerrainBench},       {"tiles", runTilesBench},
     {"plantlod", runPlantLodBench},     {"turnaround", runTurnaroundBench},
-    {"vegetation", runVegetationBench},
+    {"vegetation", runVegetationBench}, {"viewer", runViewerBench},
 };
 
 // Every suite's name, in the order `sylva bench --help` lists them.
