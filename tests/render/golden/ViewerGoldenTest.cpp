@@ -1,14 +1,15 @@
 // The viewer (render::Viewer) driven by scripts, headless on llvmpipe (EGL; the window
 // path is exercised under Xvfb by tests/app/viewer_cli_test.sh), on
 // tests/render/viewer/viewer.sylva at 320x180:
-// - a project camera shown by the viewer equals the batch golden-free render of that
-//   camera and its own golden; a flight with a scenario switch and a time change gives
+// - a project camera shown by the viewer equals the batch image of that camera (RMSE
+//   <= 1) and its golden `viewer_aircraft`; a flight with a scenario switch and a time change gives
 //   the `viewer_flown` golden; the camera saved into the project (through the
 //   formatter: the file's comments are kept) renders in batch (`sylva render`'s
 //   BatchRenderer) to the viewer's screenshot within RMSE 1.5;
 // - hot reload: an edit of the project shows in the next frames (`frames 2`) and
 //   equals a batch render of the edited project; a broken edit keeps the last good
-//   image.
+//   image;
+// - a swipe between the two scenarios with the atmosphere layer off (`viewer_swipe`).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -208,6 +209,22 @@ TEST(ViewerGolden, AnEditShowsWithinTwoFramesAndABrokenEditKeepsTheLastGoodState
     const golden::Comparison kept =
         golden::compareImages(after, readImage(folder / "kept.png"), nullptr);
     EXPECT_LE(kept.rmse, 0.5);
+}
+
+// The comparison modes live: the two scenarios swiped at the middle (natural colour left,
+// the desaturated `dry` right, a light divider), atmosphere switched off (black sky).
+TEST(ViewerGolden, SwipeBetweenScenariosWithALayerOff) {
+    const std::filesystem::path folder = prepare("swipe",
+                                                 "camera aircraft\n"
+                                                 "compare swipe dry 0.5\n"
+                                                 "layer atmosphere off\n"
+                                                 "screenshot swipe.png\n");
+    const Status ran = runViewer(folder);
+    ASSERT_TRUE(ran) << ran.error().message;
+    const std::vector<std::uint8_t> swipe = readImage(folder / "swipe.png");
+    golden::checkGolden("viewer_swipe", kWidth, kHeight, swipe);
+    // Top-left is sky: black without the atmosphere.
+    EXPECT_LT(swipe[0] + swipe[1] + swipe[2], 30);
 }
 
 }  // namespace
