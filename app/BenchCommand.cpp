@@ -76,7 +76,7 @@ const CommandSuite kCommandSuites[] = {
     {"terrain", runTerrainBench},       {"tiles", runTilesBench},
     {"plantlod", runPlantLodBench},     {"turnaround", runTurnaroundBench},
     {"vegetation", runVegetationBench}, {"shading", runShadingBench},
-    {"objects", runObjectsBench},
+    {"objects", runObjectsBench}, {"viewer", runViewerBench},
 };
 
 // Every suite's name, in the order `sylva bench --help` lists them.

@@ -11,6 +11,7 @@ namespace sylva::app {
 
 int runRender(const std::vector<std::string>& arguments);
 int runWatch(const std::vector<std::string>& arguments);
+int runView(const std::vector<std::string>& arguments);
 int runCheck(const std::vector<std::string>& arguments);
 int runAnalyse(const std::vector<std::string>& arguments);
 int runFmt(const std::vector<std::string>& arguments);
@@ -27,6 +28,7 @@ int runPlantBuild(const std::vector<std::string>& arguments);
 int runPlantInfo(const std::vector<std::string>& arguments);
 int runPlantLodBench(const std::vector<std::string>& arguments);
 int runTurnaroundBench(const std::vector<std::string>& arguments);
+int runViewerBench(const std::vector<std::string>& arguments);
 
 // Removes every `--set block.attribute=value` (or `--set=...`) from `arguments` and
 // returns them as (path, value) pairs; the option may repeat, which CommandLine does not

@@ -22,6 +22,9 @@ void printUsage(std::FILE* stream) {
         "                 render the project's views to images\n"
         "  watch PROJECT [--views NAME] [--camera NAME] [--out DIR] [--size WxH] [--exit-after N]\n"
         "                 re-render on every change of the project or its data (headless)\n"
+        "  view PROJECT [--scenario S] [--camera C] [--size WxH] [--budget-ms N] [--script FILE]\n"
+        "               [--gl glfw|egl|osmesa]\n"
+        "                 the interactive viewer: fly, walk, save cameras, hot reload\n"
         "  check PROJECT [-D name=value] [--set block.attr=value] [--print-params] [--lenient]\n"
         "                [--diagnostics=text|json]\n"
         "                 report every problem in a project without rendering\n"
@@ -73,6 +76,9 @@ int main(int argc, char** argv) {
     }
     if (command == "watch") {
         return sylva::app::runWatch(arguments);
+    }
+    if (command == "view") {
+        return sylva::app::runView(arguments);
     }
     if (command == "check") {
         return sylva::app::runCheck(arguments);

@@ -38,6 +38,9 @@ find_package(GEOS 3.10 CONFIG REQUIRED)
 find_package(glfw3 3.3 CONFIG REQUIRED)
 pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa)
 pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)
+# Dear ImGui (Debian libimgui-dev: the core and the GLFW and OpenGL 3 back ends in one
+# static library) for the viewer's panels.
+pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
 
 # glad2 GL 4.5 core loader, generated at build time by the packaged generator
 # (python3-glad). `python3 -m glad` may pick another python: call /usr/bin/glad.

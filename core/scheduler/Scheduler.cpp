@@ -309,7 +309,7 @@ void Scheduler::setFocus(double latitude, double longitude) {
     focus_ = std::make_pair(latitude, longitude);
 }
 
-void Scheduler::queueLocked(const Source& source, const TileKey& key, int priority) {
+void Scheduler::queueLocked(const Source& source, const TileKey& key, int priority, bool wanted) {
     const TaskId id{source.contentHash(), key};
     SourceCache& cache = cacheFor(source);
     if (cache.tiles.count(key) != 0 || cache.failures.count(key) != 0) {
@@ -318,9 +318,16 @@ void Scheduler::queueLocked(const Source& source, const TileKey& key, int priori
     auto task = tasks_.find(id);
     if (task == tasks_.end()) {
         const std::uint64_t sequence = ++sequence_;
-        tasks_.emplace(id, Task{&source, priority, sequence, TaskState::Queued, 0});
+        tasks_.emplace(
+            id, Task{&source, priority, sequence, TaskState::Queued, 0, !wanted, wantedRound_});
         queue_.emplace(priority, sequence, id);
-    } else if (task->second.state == TaskState::Queued && priority < task->second.priority) {
+        return;
+    }
+    if (!wanted) {
+        task->second.requested = true;
+        task->second.askedInRound = wantedRound_;
+    }
+    if (task->second.state == TaskState::Queued && priority < task->second.priority) {
         queue_.erase({task->second.priority, task->second.sequence, id});
         task->second.priority = priority;
         queue_.emplace(priority, task->second.sequence, id);
@@ -357,7 +364,7 @@ void Scheduler::managerLoop() {
             switch (message.kind) {
                 case Message::Kind::Request:
                     queueLocked(*message.requests[0].source, message.requests[0].key,
-                                message.requests[0].priority);
+                                message.requests[0].priority, false);
                     break;
                 case Message::Kind::Cancel:
                     cancelQueued(
@@ -365,13 +372,19 @@ void Scheduler::managerLoop() {
                     break;
                 case Message::Kind::SetWanted:
                 case Message::Kind::CancelAll: {
+                    const bool all = message.kind == Message::Kind::CancelAll;
+                    ++wantedRound_;
                     std::unordered_set<TaskId, TaskIdHash> wanted;
                     for (const TileRequest& request : message.requests) {
                         wanted.insert({request.source->contentHash(), request.key});
                     }
                     std::vector<TaskId> stale;
                     for (const auto& [id, task] : tasks_) {
-                        if (task.state != TaskState::Running && wanted.count(id) == 0) {
+                        // Another client's request lives until a list passes without it
+                        // being asked for again.
+                        const bool expired =
+                            all || !task.requested || task.askedInRound + 1 < wantedRound_;
+                        if (task.state != TaskState::Running && wanted.count(id) == 0 && expired) {
                             stale.push_back(id);
                         }
                     }
@@ -379,7 +392,7 @@ void Scheduler::managerLoop() {
                         cancelQueued(id);
                     }
                     for (const TileRequest& request : message.requests) {
-                        queueLocked(*request.source, request.key, request.priority);
+                        queueLocked(*request.source, request.key, request.priority, true);
                     }
                     break;
                 }

@@ -68,6 +68,12 @@ Status BatchRenderer::createContext() {
     }
     ContextOptions contextOptions;
     contextOptions.backend = options_.backend;
+    contextOptions.visible = options_.visibleWindow;
+    contextOptions.title = options_.windowTitle;
+    if (options_.width > 0 && options_.height > 0) {
+        contextOptions.width = options_.width;
+        contextOptions.height = options_.height;
+    }
     Result<std::unique_ptr<GlContext>> created = GlContext::create(contextOptions);
     if (!created) {
         return created.error();

@@ -115,6 +115,11 @@ GlContext::~GlContext() = default;
 
 void GlContext::swapBuffers() {}
 void GlContext::pollEvents() {}
+void GlContext::waitEvents(double /*seconds*/) {}
+void GlContext::framebufferSize(int& width, int& height) const {
+    width = 0;
+    height = 0;
+}
 bool GlContext::shouldClose() const {
     return false;
 }

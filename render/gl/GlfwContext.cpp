@@ -104,6 +104,14 @@ void GlfwContext::pollEvents() {
     glfwPollEvents();
 }
 
+void GlfwContext::waitEvents(double seconds) {
+    glfwWaitEventsTimeout(seconds);
+}
+
+void GlfwContext::framebufferSize(int& width, int& height) const {
+    glfwGetFramebufferSize(static_cast<GLFWwindow*>(window_), &width, &height);
+}
+
 bool GlfwContext::shouldClose() const {
     return glfwWindowShouldClose(static_cast<GLFWwindow*>(window_)) != 0;
 }

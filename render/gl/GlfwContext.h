@@ -23,6 +23,8 @@ public:
     void makeCurrent() override;
     void swapBuffers() override;
     void pollEvents() override;
+    void waitEvents(double seconds) override;
+    void framebufferSize(int& width, int& height) const override;
     bool shouldClose() const override;
     void* nativeWindow() const override { return window_; }
 

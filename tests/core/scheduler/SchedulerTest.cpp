@@ -229,6 +229,51 @@ TEST(Scheduler, CancelledQueuedTasksNeverRunAndRunningOnesAreCached) {
     scheduler.waitIdle();
 }
 
+// The viewer's frames: the terrain posts its wanted list every frame, the vegetation
+// stream asks for instance tiles with tryGet after it. A tile asked for again every
+// frame survives the lists (it used to be cancelled by each one); a tile no longer asked
+// for is cancelled at the second list after its last request.
+TEST(Scheduler, RequestsOfAnotherClientSurviveWantedListsWhileAskedFor) {
+    TestSource running("running", 1);
+    Gate gate;
+    running.gate = &gate;
+    TestSource terrain("terrain", 2);
+    TestSource instances("instances", 3);
+    Scheduler scheduler(options(1));
+    EXPECT_EQ(scheduler.tryGet(running, TileKey{2, 0, 1, 1}, 0).state, TileLookup::State::Pending);
+    gate.waitForWaiters(1);
+    const TileKey kept{4, 0, 1, 0};
+    const TileKey dropped{4, 0, 2, 0};
+    for (int frame = 0; frame < 4; ++frame) {
+        scheduler.setWanted({{&terrain, TileKey{3, 0, frame, 0}, 1}});
+        EXPECT_EQ(scheduler.tryGet(instances, kept, 40).state, TileLookup::State::Pending);
+        if (frame == 0) {
+            EXPECT_EQ(scheduler.tryGet(instances, dropped, 40).state, TileLookup::State::Pending);
+        }
+    }
+    // The next frame's list comes before the stream asks again: the instance tile was
+    // asked for since the previous list, so it stays queued (the old scheduler cancelled
+    // it here, and a worker that had it dispatched skipped it).
+    scheduler.setWanted({{&terrain, TileKey{3, 0, 4, 0}, 1}});
+    // The manager has handled every message when the queue holds both tasks (with the
+    // old behaviour it never does: give up after 2 s and let the checks below fail).
+    for (int i = 0; i < 2000 && scheduler.queuedTasks() < 2; ++i) {
+        std::this_thread::sleep_for(1ms);
+    }
+    gate.open();
+    scheduler.waitIdle();
+    std::vector<int> produced;
+    for (const TileKey& k : instances.log) {
+        produced.push_back(k.x);
+    }
+    EXPECT_EQ(produced, std::vector<int>{1});
+    std::vector<int> terrainProduced;
+    for (const TileKey& k : terrain.log) {
+        terrainProduced.push_back(k.x);
+    }
+    EXPECT_EQ(terrainProduced, std::vector<int>{4});  // only the last frame's list
+}
+
 TEST(Scheduler, FailureIsReportedOnceAndRepeatedWithoutRetry) {
     TestSource broken("broken", 1);
     broken.fail = true;

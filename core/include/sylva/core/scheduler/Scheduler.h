@@ -91,8 +91,12 @@ public:
     void request(const Source& source, const TileKey& key, int priority);
     // Drops the queued task for this tile; a running one finishes and is cached.
     void cancel(const Source& source, const TileKey& key);
-    // The tiles wanted now: queues the missing ones and cancels every queued task not
-    // in the list (seed 001 Algorithm 3, "cancel previous tile tasks; enqueue taskList").
+    // The tiles wanted now: queues the missing ones and cancels every queued task of an
+    // earlier wanted list that is not in this one (seed 001 Algorithm 3, "cancel previous
+    // tile tasks; enqueue taskList"). Tasks queued by tryGet/request (the vegetation
+    // stream's instance tiles) are another client's: they survive a wanted list as long
+    // as they were asked for again since the previous one, and are cancelled at the
+    // second list after their last request, so the terrain's list never starves them.
     void setWanted(const std::vector<TileRequest>& wanted) override;
     void cancelAll();
 
@@ -142,7 +146,9 @@ private:
         int priority = 0;
         std::uint64_t sequence = 0;
         TaskState state = TaskState::Queued;
-        std::uint64_t generation = 0;  // of the hash when the task started running
+        std::uint64_t generation = 0;    // of the hash when the task started running
+        bool requested = false;          // asked for by tryGet/request (not only a wanted list)
+        std::uint64_t askedInRound = 0;  // wantedRound_ when tryGet/request last asked
     };
     struct CachedTile {
         TilePointer tile;
@@ -168,7 +174,7 @@ private:
     Result<TilePointer> run(std::unique_lock<std::mutex>& lock, const TaskId& id,
                             const Source& source);
     SourceCache& cacheFor(const Source& source);  // registers the source's hash and inputs
-    void queueLocked(const Source& source, const TileKey& key, int priority);
+    void queueLocked(const Source& source, const TileKey& key, int priority, bool wanted);
     void removeQueuedLocked(const TaskId& id);
     void insertLocked(const TaskId& id, TilePointer tile);
     void pruneLocked();
@@ -187,6 +193,7 @@ private:
     std::unordered_map<TaskId, Task, TaskIdHash> tasks_;
     std::unordered_map<std::uint64_t, SourceCache> caches_;
     std::uint64_t sequence_ = 0;
+    std::uint64_t wantedRound_ = 0;  // setWanted lists processed
     std::uint64_t useClock_ = 0;
     std::size_t cachedBytes_ = 0;
     std::size_t peakBytes_ = 0;

@@ -25,6 +25,7 @@
 #include <cstddef>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "sylva/core/base/Result.h"
@@ -46,6 +47,10 @@ struct BatchOptions {
     int height = 0;
     std::optional<GlBackend> backend;           // GL back end (ContextOptions::backend)
     std::optional<std::size_t> cacheMegabytes;  // tile cache budget, else render { cache_mb }
+    // A visible window of the size above (the viewer) instead of an off-screen context;
+    // with the GLFW back end only (others ignore it).
+    bool visibleWindow = false;
+    std::string windowTitle = "Sylva";
 };
 
 class BatchRenderer {
@@ -86,6 +91,8 @@ public:
     // tile scheduler, created on first use with `setup`'s terrain settings and budget.
     Result<SceneRenderer*> sceneRenderer(const RenderSetup& setup);
     Scheduler& scheduler(const RenderSetup& setup);
+    // The GL context (null before createContext or the first image).
+    GlContext* context() { return context_.get(); }
 
 private:
     Status renderImage(BatchRun& run, const RenderJob& job);

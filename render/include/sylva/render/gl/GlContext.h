@@ -71,6 +71,10 @@ public:
     // Window operations: GLFW only. Other back ends: no-op / false / nullptr.
     virtual void swapBuffers();
     virtual void pollEvents();
+    // Sleeps until an input event arrives or `seconds` pass, then handles the events.
+    virtual void waitEvents(double seconds);
+    // The window's framebuffer size in pixels (GLFW); 0 x 0 for the headless back ends.
+    virtual void framebufferSize(int& width, int& height) const;
     virtual bool shouldClose() const;
     virtual void* nativeWindow() const;  // GLFWwindow* for GLFW
 

@@ -1,0 +1,207 @@
+#include "sylva/bench/ViewerBenchmark.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "sylva/core/geo/Ellipsoid.h"
+#include "sylva/core/scene/ViewerScript.h"
+#include "sylva/dsl/ProjectLoader.h"
+#include "sylva/render/batch/BatchRenderer.h"
+#include "sylva/render/viewer/Viewer.h"
+
+namespace sylva::bench {
+namespace {
+
+// Reloading is not part of the benchmark; cameras are not saved.
+class BenchmarkHost final : public render::ViewerHost {
+public:
+    explicit BenchmarkHost(std::filesystem::path project) : project_(std::move(project)) {}
+    Result<std::vector<ProjectModel>> loadProject() override {
+        dsl::LoadResult loaded = dsl::loadProject(project_);
+        files_ = loaded.files;
+        if (loaded.hasErrors() || !loaded.model) {
+            return Error{loaded.render()};
+        }
+        return loaded.scenarios.empty() ? std::vector<ProjectModel>{std::move(*loaded.model)}
+                                        : std::move(loaded.scenarios);
+    }
+    std::vector<std::filesystem::path> projectFiles() const override { return files_; }
+    Status saveCamera(const std::string&, const Camera&, const std::string&) override {
+        return Error{"the viewer benchmark saves no cameras"};
+    }
+
+private:
+    std::filesystem::path project_;
+    std::vector<std::filesystem::path> files_;
+};
+
+struct FrameRecord {
+    double end = 0;  // seconds since the start
+    double milliseconds = 0;
+    bool pending = false;
+    bool moved = false;
+    int level = 0;
+    bool holes = false;
+};
+
+// Whether a pixel whose ray meets the ellipsoid (farther than twice the near plane) shows
+// sky: the terrain left a hole there.
+bool hasHoles(const render::ViewerFrame& frame) {
+    const Camera& camera = *frame.camera;
+    const double scale = Ellipsoid::kSemiMajorAxis / Ellipsoid::kSemiMinorAxis;
+    const glm::dvec3 origin(camera.position.x, camera.position.y, camera.position.z * scale);
+    const double tangent = std::tan(camera.verticalFov / 2);
+    const double aspect = double(frame.width) / frame.height;
+    const double a2 = Ellipsoid::kSemiMajorAxis * Ellipsoid::kSemiMajorAxis;
+    for (int y = 0; y < frame.height; ++y) {
+        for (int x = 0; x < frame.width; ++x) {
+            if ((*frame.depth)[std::size_t(y) * frame.width + x] > 0.0f) {
+                continue;
+            }
+            const glm::dvec3 view((2.0 * (x + 0.5) / frame.width - 1.0) * tangent * aspect,
+                                  (1.0 - 2.0 * (y + 0.5) / frame.height) * tangent, -1.0);
+            glm::dvec3 direction = camera.axes * glm::normalize(view);
+            direction.z *= scale;
+            // |origin + t direction|² = a² (the ellipsoid made a sphere by scaling z).
+            const double qa = glm::dot(direction, direction);
+            const double qb = 2.0 * glm::dot(origin, direction);
+            const double qc = glm::dot(origin, origin) - a2;
+            const double discriminant = qb * qb - 4 * qa * qc;
+            if (discriminant < 0) {
+                continue;
+            }
+            const double t = (-qb - std::sqrt(discriminant)) / (2 * qa);
+            if (t > 2.0 * frame.near) {
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+std::string flightScript(const ViewerBenchmarkOptions& options) {
+    std::string script = "camera space\nframes 4\ncamera aircraft\nframes 4\n";
+    for (int i = 0; i < options.flightSteps; ++i) {
+        script += "fly 300 0 -150\nframes 1\n";  // towards and down to the forest
+    }
+    script += "camera ground\nmode walk\n";
+    for (int i = 0; i < options.flightSteps; ++i) {
+        script += "fly 1.5 0 0\nframes 1\n";
+    }
+    script += "frames " + std::to_string(options.stillFrames) + "\n";
+    return script;
+}
+
+double percentile(std::vector<double> values, double p) {
+    if (values.empty()) {
+        return 0;
+    }
+    std::sort(values.begin(), values.end());
+    const std::size_t index =
+        std::min(values.size() - 1, static_cast<std::size_t>(std::ceil(p * values.size())) - 1);
+    return values[index];
+}
+
+MetricList metricsOf(const std::vector<FrameRecord>& frames, double budget) {
+    std::vector<double> milliseconds;
+    std::size_t holes = 0;
+    std::size_t lastMoving = 0;
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        milliseconds.push_back(frames[i].milliseconds);
+        holes += frames[i].holes ? 1 : 0;
+        if (frames[i].moved) {
+            lastMoving = i;
+        }
+    }
+    // Still frames: after the last moving one. Full detail: the first with nothing pending
+    // from which the level stays as it ends.
+    const std::size_t first = lastMoving + 1;
+    const double stop = frames.empty() ? 0 : frames[lastMoving].end;
+    double toFull = -1;
+    for (std::size_t i = first; i < frames.size(); ++i) {
+        bool settled = !frames[i].pending;
+        for (std::size_t j = i; j < frames.size() && settled; ++j) {
+            settled = frames[j].level == frames.back().level;
+        }
+        if (settled) {
+            toFull = frames[i].end - stop;
+            break;
+        }
+    }
+    std::size_t reversals = 0;
+    int lastDirection = 0;
+    for (std::size_t i = first + 1; i < frames.size(); ++i) {
+        const int change = frames[i].level - frames[i - 1].level;
+        const int direction = change > 0 ? 1 : change < 0 ? -1 : 0;
+        if (direction != 0) {
+            reversals += (lastDirection != 0 && direction != lastDirection) ? 1 : 0;
+            lastDirection = direction;
+        }
+    }
+    const double stillSeconds =
+        frames.empty() || first >= frames.size() ? 0 : frames.back().end - frames[lastMoving].end;
+    const double p95 = percentile(milliseconds, 0.95);
+    return {{"frame_ms_p50", percentile(milliseconds, 0.5)},
+            {"frame_ms_p95", p95},
+            {"budget_overrun_p95", budget > 0 ? p95 / budget : 0},
+            {"frames_with_holes", double(holes)},
+            {"seconds_to_full_detail_after_stop", toFull},
+            {"quality_oscillations", stillSeconds > 0 ? reversals / stillSeconds : 0}};
+}
+
+}  // namespace
+
+std::string ViewerBenchmarkResult::json() const {
+    return metricsJson("viewer", metrics, {NumberFormat::Notation::Fixed, 3});
+}
+
+Result<ViewerBenchmarkResult> runViewerBenchmark(const ViewerBenchmarkOptions& options) {
+    BenchmarkHost host(options.project);
+    Result<std::vector<ProjectModel>> models = host.loadProject();
+    if (!models) {
+        return Error{options.project.string() + ": " + models.error().message +
+                     " (the Olinda data: run scripts/fetch-samples)"};
+    }
+    render::BatchOptions batchOptions;
+    batchOptions.width = options.width;
+    batchOptions.height = options.height;
+    render::BatchRenderer batch(batchOptions);
+    if (Status set = batch.setProject(std::move(models.value())); !set) {
+        return set.error();
+    }
+    Result<std::vector<ScriptCommand>> script =
+        ViewerScript::parse(flightScript(options), "viewer-benchmark.script", ".");
+    if (!script) {
+        return script.error();
+    }
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<FrameRecord> frames;
+    render::ViewerOptions viewerOptions;
+    viewerOptions.budgetMilliseconds = options.budgetMilliseconds;
+    viewerOptions.script = std::move(script.value());
+    viewerOptions.closeAfterScript = true;
+    viewerOptions.log = stderr;
+    viewerOptions.onFrame = [&](const render::ViewerFrame& frame) {
+        FrameRecord record;
+        record.end =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        record.milliseconds = frame.milliseconds;
+        record.pending = frame.pending;
+        record.moved = frame.moved;
+        record.level = frame.budgetLevel;
+        record.holes = hasHoles(frame);
+        frames.push_back(record);
+    };
+    render::Viewer viewer(batch, host, std::move(viewerOptions));
+    if (Status ran = viewer.run(); !ran) {
+        return ran.error();
+    }
+    ViewerBenchmarkResult result;
+    result.metrics = metricsOf(frames, options.budgetMilliseconds);
+    return result;
+}
+
+}  // namespace sylva::bench

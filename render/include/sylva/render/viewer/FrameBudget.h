@@ -1,0 +1,75 @@
+// FrameBudget: time-critical choice of the vegetation level of detail for the viewer's
+// `--budget-ms` (seed 002, Zach et al.; seed 000 ch. 8): every frame, the quality level
+// predicted to fit the budget is chosen from a cost model refined by the frames measured
+// while running. Used by the viewer (ViewerSession); public for its tests.
+//
+// Control variable: a ladder of levels, 0 = full detail (VegetationSettings quality 1,
+// minimumPixels 1.5). Each coarser level divides `quality` by 1.4 (the renderer then
+// tolerates 1.4× the screen error, so far plants reach their coarsest primitives first)
+// and raises `minimumPixels` by 1.3 (the smallest plants on screen, the farthest, are
+// left to the terrain texture first): the farthest and smallest degrade first, and a
+// plant is never removed while it covers more than minimumPixels, so no hole opens
+// where the terrain colour does not stand in.
+//
+// Cost model (seed 002 §4: cost linear in primitives): frame = fixed + c · primitives,
+// where fixed (terrain, shading, read-back) and c (milliseconds per primitive drawn) are
+// exponential averages of the measurements, and the primitive count of a neighbouring
+// level is the current count times a ratio r per level learned from level changes made
+// while the camera stood still (prior 0.6). Seed 002 optimises per object group; one
+// global level is what VegetationSettings offers, so the knapsack reduces to a 1-D
+// search along the ladder.
+//
+// Hysteresis: a coarser level is taken at once when the prediction for the current one
+// exceeds the budget; a finer one only after 4 consecutive frames predicting it below
+// 75 % of the budget. Reversals (a change against the previous one) are counted.
+#pragma once
+
+#include <cstddef>
+
+#include "sylva/render/vegetation/VegetationRenderer.h"
+
+namespace sylva::render {
+
+struct FrameMeasurement {
+    double frameMilliseconds = 0;
+    double vegetationMilliseconds = 0;
+    std::size_t primitives = 0;  // ellipsoids + lines + instances (meshes, billboards)
+    bool cameraMoved = false;
+};
+
+class FrameBudget {
+public:
+    static constexpr int kLevels = 8;
+
+    // budgetMilliseconds <= 0: no budget (always level 0).
+    explicit FrameBudget(double budgetMilliseconds = 0);
+
+    double budgetMilliseconds() const { return budget_; }
+    int level() const { return level_; }
+    // `settings` with the level's quality and minimum pixel size (relative to its values).
+    VegetationSettings settingsFor(const VegetationSettings& settings) const;
+    // Updates the model with a frame rendered at level(), then chooses the next level.
+    void record(const FrameMeasurement& frame);
+    // Predicted milliseconds of a frame at `level` like the last one.
+    double predict(int level) const;
+    std::size_t reversals() const { return reversals_; }
+    std::size_t changes() const { return changes_; }
+
+private:
+    void changeLevel(int level);
+
+    double budget_ = 0;
+    int level_ = 0;
+    double fixedMilliseconds_ = -1;         // < 0: not measured yet
+    double millisecondsPerPrimitive_ = -1;  // < 0: not measured yet
+    double ratio_ = 0.6;                    // primitives(level + 1) / primitives(level)
+    double primitives_ = 0;                 // of the last frame
+    int previousLevel_ = -1;                // level of the frame before the last
+    double previousPrimitives_ = 0;
+    int finerVotes_ = 0;
+    int lastDirection_ = 0;
+    std::size_t reversals_ = 0;
+    std::size_t changes_ = 0;
+};
+
+}  // namespace sylva::render

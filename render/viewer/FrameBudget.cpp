@@ -1,0 +1,89 @@
+#include "sylva/render/viewer/FrameBudget.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sylva::render {
+namespace {
+
+constexpr double kQualityStep = 1.4;
+constexpr double kPixelStep = 1.3;
+constexpr double kAverage = 0.3;  // weight of the newest measurement
+constexpr int kFinerVotes = 4;
+constexpr double kFinerMargin = 0.75;
+
+double blend(double old, double value) {
+    return old < 0 ? value : old + kAverage * (value - old);
+}
+
+}  // namespace
+
+FrameBudget::FrameBudget(double budgetMilliseconds) : budget_(budgetMilliseconds) {}
+
+VegetationSettings FrameBudget::settingsFor(const VegetationSettings& settings) const {
+    VegetationSettings out = settings;
+    out.quality = settings.quality / std::pow(kQualityStep, level_);
+    out.minimumPixels = settings.minimumPixels * std::pow(kPixelStep, level_);
+    return out;
+}
+
+double FrameBudget::predict(int level) const {
+    const double fixed = std::max(fixedMilliseconds_, 0.0);
+    const double perPrimitive = std::max(millisecondsPerPrimitive_, 0.0);
+    return fixed + perPrimitive * primitives_ * std::pow(ratio_, level - level_);
+}
+
+void FrameBudget::record(const FrameMeasurement& frame) {
+    if (budget_ <= 0) {
+        return;
+    }
+    const double primitives = static_cast<double>(frame.primitives);
+    fixedMilliseconds_ = blend(
+        fixedMilliseconds_, std::max(frame.frameMilliseconds - frame.vegetationMilliseconds, 0.0));
+    if (primitives > 0) {
+        millisecondsPerPrimitive_ =
+            blend(millisecondsPerPrimitive_, frame.vegetationMilliseconds / primitives);
+    }
+    // One level apart with the camera still: the count ratio of the two levels.
+    if (!frame.cameraMoved && previousLevel_ >= 0 && std::abs(previousLevel_ - level_) == 1 &&
+        primitives > 0 && previousPrimitives_ > 0) {
+        const double measured = level_ > previousLevel_ ? primitives / previousPrimitives_
+                                                        : previousPrimitives_ / primitives;
+        ratio_ = std::clamp(std::exp(blend(std::log(ratio_), std::log(measured))), 0.2, 0.95);
+    }
+    previousLevel_ = level_;
+    previousPrimitives_ = primitives;
+    primitives_ = primitives;
+
+    if (predict(level_) > budget_) {
+        int coarser = level_ + 1;
+        while (coarser < kLevels - 1 && predict(coarser) > budget_ * 0.9) {
+            ++coarser;
+        }
+        changeLevel(std::min(coarser, kLevels - 1));
+        return;
+    }
+    if (level_ > 0 && predict(level_ - 1) < budget_ * kFinerMargin) {
+        if (++finerVotes_ >= kFinerVotes) {
+            changeLevel(level_ - 1);
+        }
+        return;
+    }
+    finerVotes_ = 0;
+}
+
+void FrameBudget::changeLevel(int level) {
+    finerVotes_ = 0;
+    if (level == level_) {
+        return;
+    }
+    const int direction = level > level_ ? 1 : -1;
+    if (lastDirection_ != 0 && direction != lastDirection_) {
+        ++reversals_;
+    }
+    lastDirection_ = direction;
+    level_ = level;
+    ++changes_;
+}
+
+}  // namespace sylva::render

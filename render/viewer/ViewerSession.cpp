@@ -1,0 +1,611 @@
+#include "ViewerSession.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "sylva/core/geo/SolarPosition.h"
+#include "sylva/core/image/ImageComparison.h"
+#include "sylva/core/scene/CameraNavigation.h"
+#include "sylva/core/terrain/ElevationQuery.h"
+#include "sylva/core/terrain/LevelVisibility.h"
+#include "sylva/render/batch/ImageOutput.h"
+#include "sylva/render/batch/JobView.h"
+
+namespace sylva::render {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDegrees = 180.0 / kPi;
+// 2024-06-21T12:00:00Z: the time keys start from midsummer noon when no time is set.
+constexpr double kMidsummerNoonUtc = 1718971200.0;
+// Clearance kept above the ground when flying or orbiting, metres.
+constexpr double kFlyClearance = 1.0;
+// Pixels between the two halves of a side-by-side comparison.
+constexpr int kSideBySideGap = 4;
+
+const char* modeName(NavigationMode mode) {
+    switch (mode) {
+        case NavigationMode::Orbit:
+            return "orbit";
+        case NavigationMode::Fly:
+            return "fly";
+        case NavigationMode::Walk:
+            return "walk";
+    }
+    return "?";
+}
+
+// Resident memory in MiB (Linux /proc/self/statm), 0 when unknown.
+double residentMegabytes() {
+    std::ifstream statm("/proc/self/statm");
+    double pages = 0, resident = 0;
+    if (!(statm >> pages >> resident)) {
+        return 0;
+    }
+    return resident * 4096.0 / (1024.0 * 1024.0);
+}
+
+}  // namespace
+
+ViewerSession::ViewerSession(BatchRenderer& batch, ViewerHost& host, const ViewerOptions& options)
+    : batch_(batch), host_(host), options_(options), budget_(options.budgetMilliseconds) {}
+
+Status ViewerSession::start() {
+    Result<RenderSetup> setup = batch_.setup();
+    if (!setup) {
+        return setup.error();
+    }
+    setup_ = setup.value();
+    width_ = setup_.settings.width;
+    height_ = setup_.settings.height;
+    sun_ = setup_.defaultSun;
+    Result<SceneRenderer*> renderer = batch_.sceneRenderer(setup_);
+    if (!renderer) {
+        return renderer.error();
+    }
+    renderer_ = renderer.value();
+    scheduler_ = &batch_.scheduler(setup_);
+    const std::string scenario =
+        options_.scenario.empty() ? batch_.project().defaultModel().scenario : options_.scenario;
+    if (Status used = useScenario(scenario); !used) {
+        return used;
+    }
+    const ProjectModel& model = batch_.project().defaultModel();
+    if (!options_.camera.empty()) {
+        if (Status moved = goToCamera(options_.camera); !moved) {
+            return moved;
+        }
+    } else if (!model.cameras.empty()) {
+        if (Status moved = goToCamera(std::size_t{0}); !moved) {
+            return moved;
+        }
+    } else {
+        // No camera in the project: the globe from 12,000 km over 0°, 0°.
+        Camera camera;
+        camera.verticalFov = 60.0 / kDegrees;
+        camera.geodetic = {0.0, 0.0, 1.2e7};
+        camera.position = Ellipsoid::toEcef(camera.geodetic);
+        camera.axes = Camera::axesFromAngles(camera.geodetic, 0.0, -kPi / 2 + 1e-3, 0.0);
+        camera_ = camera;
+        mode_ = NavigationMode::Orbit;
+    }
+    watchFiles();
+    return {};
+}
+
+void ViewerSession::setFrameSize(int width, int height) {
+    if (width > 0 && height > 0 && (width != width_ || height != height_)) {
+        width_ = width;
+        height_ = height;
+        dirty_ = true;
+    }
+}
+
+Status ViewerSession::useScenario(const std::string& name) {
+    Result<TerrainLayers> layers = batch_.project().terrainLayers(name);
+    if (!layers) {
+        return layers.error();
+    }
+    layers_ = layers.value();
+    scenario_ = name;
+    dirty_ = true;
+    return {};
+}
+
+Status ViewerSession::goToCamera(const std::string& name) {
+    const ProjectModel& model = batch_.project().defaultModel();
+    if (model.findCamera(name) == nullptr) {
+        std::string names;
+        for (const Block& block : model.cameras) {
+            names += (names.empty() ? "" : ", ") + block.name;
+        }
+        return Error{"unknown camera '" + name + "' (cameras: " + (names.empty() ? "none" : names) +
+                     ")"};
+    }
+    RenderJob job;
+    job.camera = name;
+    job.scenario = scenario_;
+    Result<JobView> view = JobView::forJob(model, job, layers_, *scheduler_, setup_, nullptr);
+    if (!view) {
+        return view.error();
+    }
+    camera_ = view->camera;
+    dirty_ = true;
+    if (mode_ == NavigationMode::Walk) {
+        mode_ = NavigationMode::Fly;  // a project camera keeps its height until W is chosen
+    }
+    return {};
+}
+
+Status ViewerSession::goToCamera(std::size_t index) {
+    const ProjectModel& model = batch_.project().defaultModel();
+    if (index >= model.cameras.size()) {
+        return Error{"the project has " + std::to_string(model.cameras.size()) +
+                     " cameras, no camera " + std::to_string(index + 1)};
+    }
+    return goToCamera(model.cameras[index].name);
+}
+
+Status ViewerSession::setScenario(const std::string& name) {
+    return useScenario(name);
+}
+
+Status ViewerSession::nextScenario() {
+    const std::vector<ProjectModel>& models = batch_.project().models();
+    std::size_t current = 0;
+    for (std::size_t i = 0; i < models.size(); ++i) {
+        if (models[i].scenario == scenario_) {
+            current = i;
+        }
+    }
+    return useScenario(models[(current + 1) % models.size()].scenario);
+}
+
+void ViewerSession::setTime(double unixSeconds) {
+    unixSeconds_ = unixSeconds;
+    const SunPosition sun = SolarPosition::at(unixSeconds);
+    sun_ = Ellipsoid::surfaceNormal(sun.subsolarLatitude, sun.subsolarLongitude);
+    dirty_ = true;
+}
+
+void ViewerSession::shiftTime(double seconds) {
+    const double start =
+        unixSeconds_.value_or(kMidsummerNoonUtc - camera_.geodetic.longitude / (2 * kPi) * 86400.0);
+    setTime(start + seconds);
+}
+
+void ViewerSession::setMode(NavigationMode mode) {
+    mode_ = mode;
+    setCamera(camera_);  // walk: down to eye height
+}
+
+void ViewerSession::cycleMode() {
+    setMode(mode_ == NavigationMode::Orbit ? NavigationMode::Fly
+            : mode_ == NavigationMode::Fly ? NavigationMode::Walk
+                                           : NavigationMode::Orbit);
+}
+
+std::optional<double> ViewerSession::groundHeight(double latitude, double longitude,
+                                                  double heightAboveGround) const {
+    // The ground as the finest ring level drawn at this height shows it (as JobView).
+    const double height = std::max(heightAboveGround, 0.5);
+    const LevelRange levels =
+        LevelVisibility::visibleLevels(height, height, setup_.terrain.maxTerrainHeight,
+                                       camera_.verticalFov, height_, setup_.terrain.maxLevel);
+    const ElevationQuery query(*layers_.elevation, *scheduler_);
+    Result<double> ground = query.groundHeight(latitude, longitude, levels.finest);
+    if (!ground) {
+        return std::nullopt;
+    }
+    return setup_.settings.ocean ? std::max(ground.value(), 0.0) : ground.value();
+}
+
+void ViewerSession::setCamera(const Camera& camera) {
+    const double above = std::max(camera_.geodetic.height - camera.geodetic.height, 0.0) +
+                         std::max(renderer_->statistics().heightAboveTerrain, 1.0);
+    const std::optional<double> ground =
+        groundHeight(camera.geodetic.latitude, camera.geodetic.longitude, above);
+    if (!ground) {
+        showError("no ground height under the camera (a tile failed): not moved");
+        return;
+    }
+    Camera placed = camera;
+    if (mode_ == NavigationMode::Walk) {
+        placed = CameraNavigation::atHeight(camera, *ground + options_.walkEyeHeight);
+    } else if (camera.geodetic.height < *ground + kFlyClearance) {
+        placed = CameraNavigation::atHeight(camera, *ground + kFlyClearance);
+    }
+    camera_ = placed;
+    dirty_ = true;
+}
+
+double ViewerSession::speed() const {
+    if (mode_ == NavigationMode::Walk) {
+        return CameraNavigation::speedFor(0.0);
+    }
+    return CameraNavigation::speedFor(std::max(renderer_->statistics().heightAboveTerrain, 0.0));
+}
+
+void ViewerSession::move(double forward, double right, double up) {
+    if (mode_ == NavigationMode::Fly) {
+        setCamera(CameraNavigation::fly(camera_, forward, right, up));
+        return;
+    }
+    Camera moved = CameraNavigation::walk(camera_, forward, right);
+    if (mode_ == NavigationMode::Orbit) {
+        moved = CameraNavigation::atHeight(moved, moved.geodetic.height + up);
+    }
+    setCamera(moved);
+}
+
+void ViewerSession::turn(double yaw, double pitch) {
+    camera_ = CameraNavigation::turn(camera_, yaw, pitch);
+    dirty_ = true;
+}
+
+void ViewerSession::orbit(double north, double east) {
+    setCamera(CameraNavigation::orbit(camera_, north, east));
+}
+
+void ViewerSession::dragGlobe(double pixelsX, double pixelsY) {
+    // The ground under the view moves with the cursor: one pixel covers about
+    // height × pixel angle metres, i.e. that over the radius in radians.
+    const double pixelAngle = 2.0 * std::tan(camera_.verticalFov / 2) / std::max(height_, 1);
+    const double radians = std::max(renderer_->statistics().heightAboveTerrain, 1.0) * pixelAngle /
+                           Ellipsoid::kMeanRadius;
+    const CameraAngles angles = CameraNavigation::anglesOf(camera_);
+    const double c = std::cos(angles.heading), s = std::sin(angles.heading);
+    // Screen right is (cos h, −sin h) in (east, north); screen up is (sin h, cos h).
+    const double east = (-pixelsX * c + pixelsY * s) * radians;
+    const double north = (pixelsX * s + pixelsY * c) * radians;
+    orbit(north, east / std::max(std::cos(camera_.geodetic.latitude), 0.01));
+}
+
+void ViewerSession::zoom(double steps) {
+    const double above = std::max(renderer_->statistics().heightAboveTerrain, 1.0);
+    const double change = above * (std::pow(0.85, steps) - 1.0);
+    setCamera(CameraNavigation::atHeight(camera_, camera_.geodetic.height + change));
+}
+
+void ViewerSession::changeQuality(int steps) {
+    qualityScale_ = std::clamp(qualityScale_ * std::pow(1.5, steps), 0.1, 10.0);
+    dirty_ = true;
+}
+
+void ViewerSession::setQualityScale(double scale) {
+    qualityScale_ = std::clamp(scale, 0.1, 10.0);
+    dirty_ = true;
+}
+
+Status ViewerSession::setLayer(const std::string& name, bool on) {
+    bool* layer = name == "colour"       ? &colourLayer_
+                  : name == "vegetation" ? &vegetationLayer_
+                  : name == "atmosphere" ? &atmosphereLayer_
+                                         : nullptr;
+    if (layer == nullptr) {
+        return Error{"unknown layer '" + name + "' (layers: colour, vegetation, atmosphere)"};
+    }
+    *layer = on;
+    dirty_ = true;
+    return {};
+}
+
+bool ViewerSession::layerOn(const std::string& name) const {
+    return name == "colour"       ? colourLayer_
+           : name == "vegetation" ? vegetationLayer_
+           : name == "atmosphere" ? atmosphereLayer_
+                                  : false;
+}
+
+Status ViewerSession::setComparison(ComparisonMode mode, const std::string& other, double amount) {
+    if (mode != ComparisonMode::None) {
+        Result<TerrainLayers> layers = batch_.project().terrainLayers(other);
+        if (!layers) {
+            return layers.error();
+        }
+        otherLayers_ = layers.value();
+        otherScenario_ = other;
+    }
+    comparison_ = mode;
+    comparisonAmount_ = std::clamp(amount, 0.0, 1.0);
+    dirty_ = true;
+    return {};
+}
+
+std::vector<std::string> ViewerSession::scenarioNames() const {
+    std::vector<std::string> names;
+    for (const ProjectModel& model : batch_.project().models()) {
+        names.push_back(model.scenario);
+    }
+    return names;
+}
+
+std::vector<std::string> ViewerSession::cameraNames() const {
+    std::vector<std::string> names;
+    for (const Block& block : batch_.project().defaultModel().cameras) {
+        names.push_back(block.name);
+    }
+    return names;
+}
+
+void ViewerSession::clearTime() {
+    unixSeconds_.reset();
+    sun_ = setup_.defaultSun;
+    dirty_ = true;
+}
+
+void ViewerSession::showError(const std::string& message) {
+    if (message != error_) {
+        std::fprintf(stderr, "sylva view: %s\n", message.c_str());
+    }
+    error_ = message;
+}
+
+Result<Image> ViewerSession::renderScenario(const TerrainLayers& layers,
+                                            const RenderSettings& settings) {
+    TerrainLayers shown = layers;
+    if (!colourLayer_) {
+        shown.color = nullptr;  // neutral grey
+    }
+    if (!vegetationLayer_) {
+        shown.plants.clear();
+    }
+    return renderer_->render(shown, *scheduler_, camera_, settings);
+}
+
+Result<Image> ViewerSession::compose(Image first, Image second) const {
+    auto rgba = [](Image& image) {
+        RgbaImage out;
+        out.width = image.width;
+        out.height = image.height;
+        out.pixels = std::move(image.pixels);
+        return out;
+    };
+    const RgbaImage left = rgba(first);
+    const RgbaImage right = rgba(second);
+    Result<RgbaImage> composed = Error{"no comparison"};
+    switch (comparison_) {
+        case ComparisonMode::Swipe:
+            composed = ImageComparison::swipe(left, right, comparisonAmount_);
+            break;
+        case ComparisonMode::Blend:
+            composed = ImageComparison::blend(left, right, comparisonAmount_);
+            break;
+        case ComparisonMode::SideBySide:
+            composed = ImageComparison::sideBySide(left, right, kSideBySideGap);
+            break;
+        case ComparisonMode::Difference:
+            composed = ImageComparison::difference(left, right);
+            break;
+        case ComparisonMode::None:
+            break;
+    }
+    if (!composed) {
+        return composed.error();
+    }
+    Image out;
+    out.width = composed->width;
+    out.height = composed->height;
+    out.pixels = std::move(composed->pixels);
+    return out;
+}
+
+Status ViewerSession::renderFrame(bool waitForTiles) {
+    RenderSettings settings = setup_.settings;
+    settings.width = width_;
+    settings.height = height_;
+    if (comparison_ == ComparisonMode::SideBySide) {
+        settings.width = std::max((width_ - kSideBySideGap) / 2, 1);
+    }
+    settings.sunDirection = sun_;
+    settings.atmosphere = setup_.settings.atmosphere && atmosphereLayer_;
+    settings.waitForTiles = waitForTiles;
+    VegetationSettings vegetation = settings.vegetation;
+    vegetation.quality *= qualityScale_;
+    // Screenshots are full detail (as a batch image); interactive frames fit the budget.
+    settings.vegetation = waitForTiles ? vegetation : budget_.settingsFor(vegetation);
+    const bool moved = dirty_;
+    const auto start = std::chrono::steady_clock::now();
+    Result<Image> image = renderScenario(layers_, settings);
+    RenderStatistics statistics = renderer_->statistics();
+    bool pending = statistics.terrain.waitingLevel >= 0 ||
+                   statistics.vegetationStream.readyTiles < statistics.vegetationStream.wantedTiles;
+    if (image && comparison_ != ComparisonMode::None) {
+        Result<Image> second = renderScenario(otherLayers_, settings);
+        const RenderStatistics& other = renderer_->statistics();
+        pending = pending || other.terrain.waitingLevel >= 0 ||
+                  other.vegetationStream.readyTiles < other.vegetationStream.wantedTiles;
+        statistics.vegetationPassSeconds += other.vegetationPassSeconds;
+        image = second ? compose(std::move(image.value()), std::move(second.value()))
+                       : Result<Image>(second.error());
+    }
+    const double milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    dirty_ = false;
+    ++frames_;
+    if (!image) {
+        report_.pending = false;
+        showError(image.error().message);
+        return image.error();
+    }
+    if (error_.rfind("project:", 0) != 0) {
+        error_.clear();  // a project error stays until the project loads again
+    }
+    image_ = std::move(image.value());
+    depth_.clear();  // read back only when needed (picking, frame callbacks)
+    near_ = renderer_->near();
+    report_.milliseconds = milliseconds;
+    report_.levelsDrawn = statistics.terrain.levels.finest;
+    report_.levelsWanted = statistics.terrain.wanted.finest;
+    report_.queuedTiles = scheduler_->queuedTasks();
+    report_.instancesDrawn = statistics.vegetation.drawnInstances;
+    report_.pending = pending;
+    FrameMeasurement measurement;
+    measurement.frameMilliseconds = milliseconds;
+    measurement.vegetationMilliseconds = statistics.vegetationPassSeconds * 1000.0;
+    measurement.primitives = statistics.vegetation.ellipsoids + statistics.vegetation.lines +
+                             statistics.vegetation.meshInstances +
+                             statistics.vegetation.billboardInstances;
+    measurement.cameraMoved = moved;
+    if (!waitForTiles) {
+        const int level = budget_.level();
+        budget_.record(measurement);
+        if (options_.onFrame) {
+            ViewerFrame frame;
+            frame.milliseconds = milliseconds;
+            frame.pending = report_.pending;
+            frame.moved = moved;
+            frame.budgetLevel = level;
+            frame.instancesDrawn = report_.instancesDrawn;
+            frame.camera = &camera_;
+            depth_ = renderer_->depth();
+            frame.depth = &depth_;
+            frame.near = near_;
+            frame.width = image_.width;
+            frame.height = image_.height;
+            options_.onFrame(frame);
+        }
+    }
+    return {};
+}
+
+void ViewerSession::waitForTiles(double seconds) {
+    scheduler_->waitForProgress(std::chrono::milliseconds(static_cast<int>(seconds * 1000)));
+}
+
+void ViewerSession::watchFiles() {
+    watch_.clear();
+    for (const std::filesystem::path& file : host_.projectFiles()) {
+        watch_.watch(file);
+    }
+    for (const std::filesystem::path& file : batch_.project().files()) {
+        watch_.watch(file);
+    }
+}
+
+bool ViewerSession::pollFiles() {
+    const std::vector<std::filesystem::path> changed = watch_.poll();
+    if (changed.empty()) {
+        return false;
+    }
+    for (const std::filesystem::path& file : changed) {
+        std::fprintf(options_.log, "changed: %s\n", file.string().c_str());
+    }
+    dirty_ = true;
+    Result<std::vector<ProjectModel>> models = host_.loadProject();
+    Status set = models ? batch_.setProject(std::move(models.value())) : Status(models.error());
+    if (!set) {
+        // The previous project and its graphs stay; the error is shown until a good load.
+        showError("project: " + set.error().message);
+        std::fprintf(options_.log, "the project has errors: keeping the last good state\n");
+        std::fflush(options_.log);
+        return true;
+    }
+    error_.clear();
+    ++reloads_;
+    // The render block may have changed (sun, exposure, atmosphere); the frame size stays.
+    if (Result<RenderSetup> setup = batch_.setup(); setup) {
+        setup_ = setup.value();
+        if (!unixSeconds_) {
+            sun_ = setup_.defaultSun;
+        }
+    } else {
+        showError(setup.error().message);
+    }
+    const std::string scenario = scenario_;
+    if (Status used = useScenario(scenario); !used) {
+        showError(used.error().message + "; showing the first scenario");
+        (void)useScenario(batch_.project().defaultModel().scenario);
+    }
+    if (comparison_ != ComparisonMode::None) {
+        if (Status compared = setComparison(comparison_, otherScenario_, comparisonAmount_);
+            !compared) {
+            showError(compared.error().message + "; comparison off");
+            comparison_ = ComparisonMode::None;
+        }
+    }
+    watchFiles();
+    std::fprintf(options_.log, "reloaded the project (%zu tiles cached are kept)\n",
+                 scheduler_->totals().tiles);
+    std::fflush(options_.log);
+    return true;
+}
+
+Status ViewerSession::screenshot(const std::filesystem::path& path) {
+    if (Status rendered = renderFrame(true); !rendered) {
+        return rendered;
+    }
+    Image copy = image_;
+    if (Status written = ImageOutput::write(path, copy); !written) {
+        return written;
+    }
+    std::fprintf(options_.log, "screenshot: %s  %dx%d\n", path.string().c_str(), copy.width,
+                 copy.height);
+    std::fflush(options_.log);
+    return {};
+}
+
+Status ViewerSession::saveCamera(const std::string& name, const std::string& views) {
+    if (Status saved = host_.saveCamera(name, camera_, views); !saved) {
+        showError(saved.error().message);
+        return saved;
+    }
+    std::fprintf(options_.log, "saved camera '%s'\n", name.c_str());
+    std::fflush(options_.log);
+    return {};
+}
+
+std::string ViewerSession::pick(double x, double y) {
+    const int px = static_cast<int>(x), py = static_cast<int>(y);
+    if (depth_.empty()) {
+        depth_ = renderer_->depth();  // the G-buffer still holds the last frame
+    }
+    if (px < 0 || py < 0 || px >= image_.width || py >= image_.height ||
+        depth_.size() != static_cast<std::size_t>(image_.width) * image_.height) {
+        return "nothing";
+    }
+    const float depth = depth_[static_cast<std::size_t>(py) * image_.width + px];
+    if (depth <= 0.0f) {
+        return "nothing (sky)";
+    }
+    // Reversed-Z with an infinite far plane: depth = near / view distance along -z.
+    const double along = near_ / depth;
+    const double tangent = std::tan(camera_.verticalFov / 2);
+    const double aspect = double(image_.width) / image_.height;
+    const double viewX = (2.0 * (px + 0.5) / image_.width - 1.0) * tangent * aspect;
+    const double viewY = (1.0 - 2.0 * (py + 0.5) / image_.height) * tangent;
+    const glm::dvec3 point =
+        camera_.position + camera_.axes * glm::dvec3(viewX, viewY, -1.0) * along;
+    const Geodetic at = Ellipsoid::toGeodetic(point);
+    char text[160];
+    std::snprintf(text, sizeof text, "picked %.6f deg, %.6f deg, %.1f m; distance %.1f m",
+                  at.latitude * kDegrees, at.longitude * kDegrees, at.height,
+                  glm::length(point - camera_.position));
+    return text;
+}
+
+std::vector<std::string> ViewerSession::statusLines() const {
+    std::vector<std::string> lines;
+    char text[200];
+    std::snprintf(
+        text, sizeof text, "%s | scenario %s | %s", modeName(mode_),
+        scenario_.empty() ? "(default)" : scenario_.c_str(),
+        unixSeconds_
+            ? ("unix time " + std::to_string(static_cast<long long>(*unixSeconds_))).c_str()
+            : "render block sun");
+    lines.push_back(text);
+    std::snprintf(text, sizeof text, "%.6f deg %.6f deg  %.1f m above ground  speed %.1f m/s",
+                  camera_.geodetic.latitude * kDegrees, camera_.geodetic.longitude * kDegrees,
+                  renderer_->statistics().heightAboveTerrain, speed());
+    lines.push_back(text);
+    std::snprintf(
+        text, sizeof text,
+        "frame %.0f ms | levels %d/%d | tiles queued %zu | plants %zu | LoD %d | %.0f MiB",
+        report_.milliseconds, report_.levelsDrawn, report_.levelsWanted, report_.queuedTiles,
+        report_.instancesDrawn, budget_.level(), residentMegabytes());
+    lines.push_back(text);
+    return lines;
+}
+
+}  // namespace sylva::render

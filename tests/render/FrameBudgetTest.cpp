@@ -1,0 +1,61 @@
+// FrameBudget against a synthetic scene whose cost is known: frame = 50 ms fixed +
+// 0.5 µs per primitive, 200,000 primitives at level 0 and half as many per coarser level
+// (the controller does not know the 0.5). With a 120 ms budget the best level that fits
+// is 2 (100 ms; level 1 costs 150 ms): the controller must get there, stay without
+// reversals while the view is still, return to full detail when the budget allows it,
+// and hand the renderer settings that coarsen with the level.
+#include "sylva/render/viewer/FrameBudget.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace sylva::render {
+namespace {
+
+FrameMeasurement frameAt(int level, double primitivesAtZero, bool moved) {
+    FrameMeasurement frame;
+    frame.primitives = static_cast<std::size_t>(primitivesAtZero * std::pow(0.5, level));
+    frame.vegetationMilliseconds = 0.0005 * double(frame.primitives);
+    frame.frameMilliseconds = 50.0 + frame.vegetationMilliseconds;
+    frame.cameraMoved = moved;
+    return frame;
+}
+
+TEST(FrameBudget, SettlesOnTheFinestLevelThatFitsWithoutOscillating) {
+    FrameBudget budget(120.0);
+    EXPECT_EQ(budget.level(), 0);
+    for (int frame = 0; frame < 10; ++frame) {
+        budget.record(frameAt(budget.level(), 200000, false));
+    }
+    EXPECT_EQ(budget.level(), 2);
+    const std::size_t reversals = budget.reversals();
+    for (int frame = 0; frame < 200; ++frame) {
+        budget.record(frameAt(budget.level(), 200000, false));
+        EXPECT_LE(50.0 + 100.0 * std::pow(0.5, budget.level()), 120.0);
+    }
+    EXPECT_EQ(budget.level(), 2);
+    EXPECT_EQ(budget.reversals(), reversals);
+    // A lighter view (a tenth of the plants): full detail fits again, after the
+    // hysteresis frames, and stays.
+    for (int frame = 0; frame < 30; ++frame) {
+        budget.record(frameAt(budget.level(), 20000, true));
+    }
+    EXPECT_EQ(budget.level(), 0);
+}
+
+TEST(FrameBudget, CoarserLevelsLowerQualityAndDropTheSmallestPlants) {
+    FrameBudget budget(10.0);
+    budget.record(frameAt(0, 1000000, false));  // 550 ms: far over budget
+    ASSERT_GT(budget.level(), 0);
+    VegetationSettings settings;
+    const VegetationSettings coarse = budget.settingsFor(settings);
+    EXPECT_LT(coarse.quality, settings.quality);
+    EXPECT_GT(coarse.minimumPixels, settings.minimumPixels);
+    FrameBudget none(0.0);
+    none.record(frameAt(0, 1000000, false));
+    EXPECT_EQ(none.level(), 0);
+}
+
+}  // namespace
+}  // namespace sylva::render

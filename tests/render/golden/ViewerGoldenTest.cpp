@@ -1,0 +1,231 @@
+// The viewer (render::Viewer) driven by scripts, headless on llvmpipe (EGL; the window
+// path is exercised under Xvfb by tests/app/viewer_cli_test.sh), on
+// tests/render/viewer/viewer.sylva at 320x180:
+// - a project camera shown by the viewer equals the batch image of that camera (RMSE
+//   <= 1) and its golden `viewer_aircraft`; a flight with a scenario switch and a time change gives
+//   the `viewer_flown` golden; the camera saved into the project (through the
+//   formatter: the file's comments are kept) renders in batch (`sylva render`'s
+//   BatchRenderer) to the viewer's screenshot within RMSE 1.5;
+// - hot reload: an edit of the project shows in the next frames (`frames 2`) and
+//   equals a batch render of the edited project; a broken edit keeps the last good
+//   image;
+// - a swipe between the two scenarios with the atmosphere layer off (`viewer_swipe`).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "GoldenImage.h"
+#include "sylva/core/image/ImageWriter.h"
+#include "sylva/core/scene/ViewerScript.h"
+#include "sylva/dsl/CameraBlockEditor.h"
+#include "sylva/dsl/ProjectLoader.h"
+#include "sylva/render/batch/BatchRenderer.h"
+#include "sylva/render/viewer/Viewer.h"
+
+namespace sylva::render {
+namespace {
+
+constexpr int kWidth = 320;
+constexpr int kHeight = 180;
+
+class TestHost final : public ViewerHost {
+public:
+    explicit TestHost(std::filesystem::path project) : project_(std::move(project)) {}
+    Result<std::vector<ProjectModel>> loadProject() override {
+        dsl::LoadResult loaded = dsl::loadProject(project_);
+        files_ = loaded.files;
+        if (loaded.hasErrors() || !loaded.model) {
+            return Error{loaded.render()};
+        }
+        return loaded.scenarios;
+    }
+    std::vector<std::filesystem::path> projectFiles() const override { return files_; }
+    Status saveCamera(const std::string& name, const Camera& camera,
+                      const std::string& views) override {
+        return dsl::CameraBlockEditor::save(project_, name, camera, views);
+    }
+
+private:
+    std::filesystem::path project_;
+    std::vector<std::filesystem::path> files_;
+};
+
+class SilentListener final : public BatchListener {
+public:
+    void jobDone(const JobReport&) override {}
+    void error(const std::string& message) override { ADD_FAILURE() << message; }
+};
+
+std::string readText(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// A scratch folder holding a copy of the viewer test project and `script`.
+std::filesystem::path prepare(const std::string& name, const std::string& script) {
+    const std::filesystem::path folder =
+        std::filesystem::path(SYLVA_TEST_OUTPUT_DIR) / "viewer" / name;
+    std::filesystem::remove_all(folder);
+    std::filesystem::create_directories(folder);
+    std::filesystem::copy_file(
+        std::filesystem::path(SYLVA_TEST_DATA_DIR) / "render" / "viewer" / "viewer.sylva",
+        folder / "viewer.sylva");
+    std::ofstream(folder / "run.script") << script;
+    return folder;
+}
+
+// Runs the script of `folder` in a headless viewer; returns the viewer's status.
+Status runViewer(const std::filesystem::path& folder) {
+    TestHost host(folder / "viewer.sylva");
+    Result<std::vector<ProjectModel>> models = host.loadProject();
+    if (!models) {
+        return models.error();
+    }
+    BatchOptions options;
+    options.width = kWidth;
+    options.height = kHeight;
+    BatchRenderer batch(options);
+    if (Status set = batch.setProject(std::move(models.value())); !set) {
+        return set;
+    }
+    Result<std::vector<ScriptCommand>> script = ViewerScript::load(folder / "run.script");
+    if (!script) {
+        return script.error();
+    }
+    ViewerOptions viewerOptions;
+    viewerOptions.script = std::move(script.value());
+    viewerOptions.closeAfterScript = true;
+    Viewer viewer(batch, host, viewerOptions);
+    return viewer.run();
+}
+
+// The batch image of camera `camera` in views block `views` of the project in `folder`.
+std::vector<std::uint8_t> renderBatch(const std::filesystem::path& folder, const std::string& views,
+                                      const std::string& camera) {
+    dsl::LoadResult loaded = dsl::loadProject(folder / "viewer.sylva");
+    EXPECT_FALSE(loaded.hasErrors()) << loaded.render();
+    BatchRenderer batch;
+    EXPECT_TRUE(batch.setProject(loaded.scenarios));
+    BatchSelection selection;
+    selection.outputFolder = folder / "batch";
+    selection.views = views;
+    selection.viewpoint = camera;
+    selection.manifest = false;
+    selection.comparisons = false;
+    Result<BatchPlan> plan = batch.plan(selection);
+    EXPECT_TRUE(plan) << (plan ? "" : plan.error().message);
+    if (!plan) {
+        return {};
+    }
+    EXPECT_EQ(plan->jobs().size(), 1u);
+    SilentListener listener;
+    Result<BatchSummary> summary = batch.run(plan.value(), listener);
+    EXPECT_TRUE(summary && summary->failed == 0);
+    int width = 0, height = 0;
+    Result<std::vector<std::uint8_t>> pixels =
+        ImageWriter::readRgba8(plan->jobs().front().output, width, height);
+    EXPECT_TRUE(pixels) << (pixels ? "" : pixels.error().message);
+    return pixels ? pixels.value() : std::vector<std::uint8_t>{};
+}
+
+std::vector<std::uint8_t> readImage(const std::filesystem::path& file) {
+    int width = 0, height = 0;
+    Result<std::vector<std::uint8_t>> pixels = ImageWriter::readRgba8(file, width, height);
+    EXPECT_TRUE(pixels) << (pixels ? "" : pixels.error().message);
+    EXPECT_EQ(width, kWidth);
+    EXPECT_EQ(height, kHeight);
+    return pixels ? pixels.value() : std::vector<std::uint8_t>(kWidth * kHeight * 4, 0);
+}
+
+double meanLevel(const std::vector<std::uint8_t>& pixels) {
+    double sum = 0;
+    for (std::size_t i = 0; i < pixels.size(); i += 4) {
+        sum += pixels[i] + pixels[i + 1] + pixels[i + 2];
+    }
+    return sum / (pixels.size() / 4 * 3);
+}
+
+TEST(ViewerGolden, ScriptedFlightSavesACameraThatRendersTheSameInBatch) {
+    const std::filesystem::path folder =
+        prepare("flight", readText(std::filesystem::path(SYLVA_TEST_DATA_DIR) / "render" /
+                                   "viewer" / "flight.script"));
+    const Status ran = runViewer(folder);
+    ASSERT_TRUE(ran) << ran.error().message;
+
+    const std::vector<std::uint8_t> aircraft = readImage(folder / "aircraft.png");
+    golden::checkGolden("viewer_aircraft", kWidth, kHeight, aircraft);
+    // The viewer shows a project camera exactly as the batch renders it.
+    const golden::Comparison sameCamera =
+        golden::compareImages(aircraft, renderBatch(folder, "overview", "aircraft"), nullptr);
+    EXPECT_LE(sameCamera.rmse, 1.0);
+
+    const std::vector<std::uint8_t> flown = readImage(folder / "flown.png");
+    golden::checkGolden("viewer_flown", kWidth, kHeight, flown);
+    const golden::Comparison differs = golden::compareImages(aircraft, flown, nullptr);
+    EXPECT_GT(differs.rmse, 10.0) << "the flight, scenario and time changed nothing";
+
+    // The saved camera: a formatted block in the file (comments kept), listed in `check`.
+    const std::string text = readText(folder / "viewer.sylva");
+    EXPECT_NE(text.find("camera flown {"), std::string::npos) << text;
+    EXPECT_NE(text.find("cameras = [@aircraft, @flown]"), std::string::npos) << text;
+    EXPECT_NE(text.find("# The hot-reload test edits this brightness"), std::string::npos);
+    const golden::Comparison batch =
+        golden::compareImages(flown, renderBatch(folder, "check", "flown"), nullptr);
+    EXPECT_LE(batch.rmse, 1.5) << "max error " << batch.maxError;
+}
+
+TEST(ViewerGolden, AnEditShowsWithinTwoFramesAndABrokenEditKeepsTheLastGoodState) {
+    const std::filesystem::path folder =
+        prepare("reload",
+                "camera aircraft\n"
+                "wait-tiles\n"
+                "screenshot before.png\n"
+                "edit viewer.sylva \"brightness = 0\" \"brightness = 0.25\"\n"
+                "frames 2\n"
+                "screenshot after.png\n"
+                "edit viewer.sylva \"brightness = 0.25\" \"brightness = @nowhere\"\n"
+                "frames 2\n"
+                "screenshot kept.png\n");
+    const Status ran = runViewer(folder);
+    ASSERT_TRUE(ran) << ran.error().message;
+    const std::vector<std::uint8_t> before = readImage(folder / "before.png");
+    const std::vector<std::uint8_t> after = readImage(folder / "after.png");
+    EXPECT_GT(meanLevel(after), meanLevel(before) + 5.0) << "the brightness edit did not show";
+    // The reloaded view equals a batch render of the edited project.
+    std::string edited = readText(folder / "viewer.sylva");
+    const std::size_t broken = edited.find("brightness = @nowhere");
+    ASSERT_NE(broken, std::string::npos);
+    edited.replace(broken, 21, "brightness = 0.25");
+    std::ofstream(folder / "viewer.sylva") << edited;
+    const golden::Comparison reloaded =
+        golden::compareImages(after, renderBatch(folder, "overview", "aircraft"), nullptr);
+    EXPECT_LE(reloaded.rmse, 1.0);
+    // The broken edit kept the last good state.
+    const golden::Comparison kept =
+        golden::compareImages(after, readImage(folder / "kept.png"), nullptr);
+    EXPECT_LE(kept.rmse, 0.5);
+}
+
+// The comparison modes live: the two scenarios swiped at the middle (natural colour left,
+// the desaturated `dry` right, a light divider), atmosphere switched off (black sky).
+TEST(ViewerGolden, SwipeBetweenScenariosWithALayerOff) {
+    const std::filesystem::path folder = prepare("swipe",
+                                                 "camera aircraft\n"
+                                                 "compare swipe dry 0.5\n"
+                                                 "layer atmosphere off\n"
+                                                 "screenshot swipe.png\n");
+    const Status ran = runViewer(folder);
+    ASSERT_TRUE(ran) << ran.error().message;
+    const std::vector<std::uint8_t> swipe = readImage(folder / "swipe.png");
+    golden::checkGolden("viewer_swipe", kWidth, kHeight, swipe);
+    // Top-left is sky: black without the atmosphere.
+    EXPECT_LT(swipe[0] + swipe[1] + swipe[2], 30);
+}
+
+}  // namespace
+}  // namespace sylva::render
