@@ -76,7 +76,7 @@ const CommandSuite kCommandSuites[] = {
     {"terrain", runTerrainBench},       {"tiles", runTilesBench},
     {"plantlod", runPlantLodBench},     {"turnaround", runTurnaroundBench},
     {"vegetation", runVegetationBench}, {"shading", runShadingBench},
-    {"objects", runObjectsBench}, {"viewer", runViewerBench},
+    {"objects", runObjectsBench},       {"viewer", runViewerBench},
 };
 
 // Every suite's name, in the order `sylva bench --help` lists them.

@@ -106,7 +106,8 @@ private:
                                                                TileProvider& provider,
                                                                const Camera& camera,
                                                                const RenderSettings& settings);
-    // One sample: terrain, buildings/models and plants into the G-buffer with `projection`, shaded into output_.
+    // One sample: terrain, buildings/models and plants into the G-buffer with `projection`, shaded
+    // into output_.
     void drawSample(const Camera& camera, const glm::dmat4& projection, const LevelRange& levels,
                     const std::vector<const InstanceBatch*>& batches,
                     const RenderSettings& settings);
