@@ -41,6 +41,11 @@ void BatchRun::fail(const RenderJob& job, const std::string& message) {
     failedJobs_.insert(job.index);
 }
 
+void BatchRun::failTransiently(const RenderJob& job, const std::string& message) {
+    fail(job, message);
+    ++summary_.transientFailures;
+}
+
 void BatchRun::degrade(const std::string& message) {
     listener_.error(message);
     ++summary_.degraded;

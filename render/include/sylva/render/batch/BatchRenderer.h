@@ -23,8 +23,12 @@
 
 #include <atomic>
 #include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "sylva/core/base/Result.h"
@@ -46,6 +50,16 @@ struct BatchOptions {
     int height = 0;
     std::optional<GlBackend> backend;           // GL back end (ContextOptions::backend)
     std::optional<std::size_t> cacheMegabytes;  // tile cache budget, else render { cache_mb }
+    // The disk tile cache folder: `diskCacheDisabled` (--no-disk-cache) wins, then
+    // `diskCacheFolder` (--disk-cache), then the render block's disk_cache, then, when
+    // `diskCacheByDefault` (the CLI), DiskTileCache::defaultFolder(); else none.
+    bool diskCacheDisabled = false;
+    std::optional<std::filesystem::path> diskCacheFolder;
+    bool diskCacheByDefault = false;
+    std::optional<std::uint64_t> diskCacheMegabytes;  // else render { disk_cache_mb }
+    // Receives the disk cache's warnings (unwritable folder, corrupt entry), each kind
+    // once per process; from any thread.
+    std::function<void(const std::string&)> warningSink;
 };
 
 class BatchRenderer {
