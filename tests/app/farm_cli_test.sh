@@ -225,7 +225,8 @@ run cache prune --disk-cache "$SCRATCH/cache" --budget-mb 64 --json
 expect_rc 0
 run cache clear --disk-cache "$SCRATCH/cache"
 expect_rc 0
-expect_stdout "removed $before files"
+removed=$(sed -n 's/.*removed \([0-9]*\) files.*/\1/p' "$OUT")
+[ "${removed:-0}" -ge "$before" ] || fail "clear removed ${removed:-none} of $before entries"
 run cache stats --disk-cache "$SCRATCH/cache" --json
 [ "$(json_eval "$OUT" "d['entries']")" = 0 ] || fail "entries left after clear"
 run cache frobnicate
