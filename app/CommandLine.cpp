@@ -82,6 +82,37 @@ Result<std::optional<std::size_t>> cacheMegabytesOption(const ParsedCommandLine&
     return std::optional<std::size_t>(value);
 }
 
+Status diskCacheOptions(const ParsedCommandLine& command, bool& disabled,
+                        std::optional<std::filesystem::path>& folder,
+                        std::optional<std::uint64_t>& megabytes) {
+    disabled = command.has("no-disk-cache");
+    if (std::optional<std::string> text = command.get("disk-cache")) {
+        if (disabled) {
+            return Error{"--disk-cache and --no-disk-cache exclude each other"};
+        }
+        if (text->empty()) {
+            return Error{"--disk-cache expects a folder"};
+        }
+        folder = std::filesystem::path(*text);
+    }
+    if (std::optional<std::string> text = command.get("disk-cache-mb")) {
+        const Error error{
+            "--disk-cache-mb expects a disk tile cache budget in MiB within 64..1000000000, "
+            "got '" +
+            *text + "'"};
+        if (text->empty() || text->size() > 10 ||
+            text->find_first_not_of("0123456789") != std::string::npos) {
+            return error;
+        }
+        const std::uint64_t value = std::stoull(*text);
+        if (value < 64 || value > 1000000000ull) {
+            return error;
+        }
+        megabytes = value;
+    }
+    return {};
+}
+
 bool parseSize(const std::string& text, int& width, int& height) {
     int w = 0, h = 0;
     char x = 0, extra = 0;

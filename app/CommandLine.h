@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
@@ -37,6 +39,12 @@ struct ParsedCommandLine {
 // or an error "--cache-mb expects ..., got 'N'" when N is not such a whole number (a usage
 // error, exit code 2).
 Result<std::optional<std::size_t>> cacheMegabytesOption(const ParsedCommandLine& command);
+// The disk tile cache options of `render`: --disk-cache DIR, --no-disk-cache and
+// --disk-cache-mb N (64..1e9) into `options` (the CLI turns the cache on by default);
+// an error is a usage error (exit code 2).
+Status diskCacheOptions(const ParsedCommandLine& command, bool& disabled,
+                        std::optional<std::filesystem::path>& folder,
+                        std::optional<std::uint64_t>& megabytes);
 // "WIDTHxHEIGHT" within 1..16384 each (--size); false for anything else.
 bool parseSize(const std::string& text, int& width, int& height);
 

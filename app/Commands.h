@@ -10,6 +10,9 @@
 namespace sylva::app {
 
 int runRender(const std::vector<std::string>& arguments);
+int runCache(const std::vector<std::string>& arguments);
+int runJobs(const std::vector<std::string>& arguments);
+int runAssemble(const std::vector<std::string>& arguments);
 int runWatch(const std::vector<std::string>& arguments);
 int runView(const std::vector<std::string>& arguments);
 int runCheck(const std::vector<std::string>& arguments);

@@ -1,6 +1,8 @@
 // `sylva render PROJECT [--views NAME] [--out DIR] [--size WxH] [--gl egl|osmesa|glfw]
-//                       [--resume] [--shard i/N] [--progress auto|json|plain] [--cache-mb N]
-//                       [--no-comparisons] [-D name=value]`
+//                       [--resume] [--shard i/N | --jobs A-B] [--progress auto|json|plain]
+//                       [--cache-mb N]
+//                       [--no-comparisons] [--disk-cache DIR | --no-disk-cache]
+//                       [--disk-cache-mb N] [-D name=value]`
 // Renders the view series of the project (or of one views block) through
 // render::BatchRenderer: cameras and path frames × scenarios × times (the sun from each
 // time, NOAA), then the compare/blend images, the MP4s of path series (frames encoded by
@@ -8,13 +10,16 @@
 // half-float radiance (after exposure, before tone mapping); both carry metadata (camera,
 // scenario, time, project, hashes, version). Every file is written atomically and
 // recorded in a manifest; --resume skips images whose record matches; Ctrl-C stops after
-// the current image. Exit code 0 only when every image was written.
+// the current image. Exit codes: 0 every image written, 1 a project or data error (a
+// farm should not retry), 2 usage, 75 transient (disk full, no GL context: retry with
+// --resume), 130 interrupted. --jobs A-B and Slurm array tasks: see farmSelection.
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <optional>
 #include <string>
 
@@ -27,6 +32,9 @@ namespace sylva::app {
 namespace {
 
 std::atomic<bool> interrupted{false};
+
+// EX_TEMPFAIL of sysexits.h: a render farm retries the task.
+constexpr int kExitTransient = 75;
 
 void onInterrupt(int) {
     interrupted.store(true);
@@ -129,13 +137,95 @@ private:
     bool bar_;
 };
 
+// "A-B" or "A" (job indices of `sylva jobs`, both included, A <= B).
+Result<render::JobRange> parseJobRange(const std::string& text) {
+    unsigned long long first = 0, last = 0;
+    char dash = 0, rest = 0;
+    const int fields = std::sscanf(text.c_str(), "%llu%c%llu%c", &first, &dash, &last, &rest);
+    const bool single = fields == 1 && text.find_first_not_of("0123456789") == std::string::npos;
+    if (single) {
+        last = first;
+    }
+    if (!(single || (fields == 3 && dash == '-' && text.find_first_of("+ ") == std::string::npos &&
+                     text[0] != '-')) ||
+        first > last || last > 1000000000ull) {
+        return Error{"--jobs expects A-B with 0 <= A <= B (job indices from 'sylva jobs'), got '" +
+                     text + "'"};
+    }
+    return render::JobRange{static_cast<std::size_t>(first), static_cast<std::size_t>(last)};
+}
+
+// A whole number from the environment, or nullopt when unset or not a number.
+std::optional<long long> environmentNumber(const char* name) {
+    const char* text = std::getenv(name);
+    if (text == nullptr || *text == '\0') {
+        return std::nullopt;
+    }
+    char* end = nullptr;
+    const long long value = std::strtoll(text, &end, 10);
+    return *end == '\0' ? std::optional<long long>(value) : std::nullopt;
+}
+
+// --jobs A-B, --shard i/N, or (neither given) a Slurm array task: task i of
+// SLURM_ARRAY_TASK_COUNT (counted from SLURM_ARRAY_TASK_MIN by SLURM_ARRAY_TASK_STEP)
+// renders shard i/N. A range renders only images (comparisons, videos and contact
+// sheets are `sylva assemble`'s) and ends at the last job when it reaches past it.
+Status farmSelection(const ParsedCommandLine& command, render::BatchSelection& selection) {
+    if (std::optional<std::string> text = command.get("jobs")) {
+        if (command.has("shard")) {
+            return Error{"--jobs and --shard exclude each other"};
+        }
+        Result<render::JobRange> range = parseJobRange(*text);
+        if (!range) {
+            return range.error();
+        }
+        selection.range = range.value();
+        selection.clampRange = true;
+        selection.imagesOnly = true;
+        return {};
+    }
+    if (std::optional<std::string> text = command.get("shard")) {
+        Result<std::pair<int, int>> parsed = ViewSeries::parseShard(*text);
+        if (!parsed) {
+            return parsed.error();
+        }
+        selection.shard = parsed.value();
+        return {};
+    }
+    const std::optional<long long> task = environmentNumber("SLURM_ARRAY_TASK_ID");
+    if (!task) {
+        return {};
+    }
+    const std::optional<long long> count = environmentNumber("SLURM_ARRAY_TASK_COUNT");
+    const long long minimum = environmentNumber("SLURM_ARRAY_TASK_MIN").value_or(0);
+    const long long step = std::max(1LL, environmentNumber("SLURM_ARRAY_TASK_STEP").value_or(1));
+    const long long index = (*task - minimum) / step + 1;
+    if (!count || *count < 1 || index < 1 || index > *count || *count > 1000000) {
+        return Error{"SLURM_ARRAY_TASK_ID=" + std::to_string(*task) +
+                     " with SLURM_ARRAY_TASK_COUNT=" + (count ? std::to_string(*count) : "unset") +
+                     " and SLURM_ARRAY_TASK_MIN=" + std::to_string(minimum) +
+                     " is no task of the array; pass --shard i/N or --jobs A-B instead"};
+    }
+    selection.shard = {static_cast<int>(index), static_cast<int>(*count)};
+    std::fprintf(stderr, "sylva: Slurm array task %lld: shard %lld/%lld\n", *task, index, *count);
+    return {};
+}
+
 void printUsage() {
     std::puts(
         "usage: sylva render PROJECT [--views NAME] [--out DIR] [--size WxH] [--gl "
         "egl|osmesa|glfw]\n"
-        "                    [--resume] [--shard i/N] [--progress auto|json|plain] [--cache-mb "
-        "N]\n"
-        "                    [--no-comparisons] [-D name=value]\n"
+        "                    [--resume] [--shard i/N | --jobs A-B] [--progress auto|json|plain]\n"
+        "                    [--cache-mb N]\n"
+        "                    [--no-comparisons] [--disk-cache DIR | --no-disk-cache]\n"
+        "                    [--disk-cache-mb N] [--tile-stats] [-D name=value]\n"
+        "The disk tile cache (shared by processes and machines) is on by default: --disk-cache,\n"
+        "else render { disk_cache }, else $SYLVA_CACHE_DIR/tiles, $XDG_CACHE_HOME/sylva/tiles or\n"
+        "~/.cache/sylva/tiles.\n"
+        "--jobs A-B renders the images among jobs A..B of 'sylva jobs' (ending at the last job);\n"
+        "without --jobs and --shard, SLURM_ARRAY_TASK_ID/COUNT select shard i/N. Exit codes: 0\n"
+        "done, 1 project or data error (do not retry), 2 usage, 75 transient (disk full, no GL\n"
+        "context: retry, with --resume).\n"
         "Outputs by the views' template extension: .png (8-bit sRGB), .exr (linear radiance,\n"
         "half float), .mp4 (path frames encoded by ffmpeg). --no-comparisons renders only the\n"
         "scenario images (no compare/blend images, no contact sheets).");
@@ -167,13 +257,20 @@ bool parseRequest(const ParsedCommandLine& command, RenderRequest& request) {
         return false;
     }
     request.options.cacheMegabytes = cache.value();
-    if (std::optional<std::string> text = command.get("shard")) {
-        Result<std::pair<int, int>> parsed = ViewSeries::parseShard(*text);
-        if (!parsed) {
-            reportError(parsed.error().message);
-            return false;
-        }
-        request.selection.shard = parsed.value();
+    if (Status disk =
+            diskCacheOptions(command, request.options.diskCacheDisabled,
+                             request.options.diskCacheFolder, request.options.diskCacheMegabytes);
+        !disk) {
+        reportError(disk.error().message);
+        return false;
+    }
+    request.options.diskCacheByDefault = true;
+    request.options.warningSink = [](const std::string& message) {
+        std::fprintf(stderr, "sylva: warning: %s\n", message.c_str());
+    };
+    if (Status farm = farmSelection(command, request.selection); !farm) {
+        reportError(farm.error().message);
+        return false;
     }
     const std::string progress = command.get("progress").value_or("auto");
     if (progress != "auto" && progress != "json" && progress != "plain") {
@@ -189,6 +286,31 @@ bool parseRequest(const ParsedCommandLine& command, RenderRequest& request) {
     return true;
 }
 
+// --tile-stats: where the tile time went, per source (stderr), for profiling a cold render.
+void printTileStatistics(const Scheduler& scheduler) {
+    std::fprintf(stderr, "%-28s %9s %9s %9s %11s\n", "source", "produced", "from disk", "hits",
+                 "produce s");
+    for (const SchedulerStatistics& source : scheduler.statisticsPerSource()) {
+        std::fprintf(stderr, "%-28s %9zu %9zu %9zu %11.2f\n", source.name.c_str(), source.misses,
+                     source.diskHits, source.hits, source.produceSeconds);
+    }
+    const SchedulerStatistics total = scheduler.totals();
+    std::fprintf(stderr, "%-28s %9zu %9zu %9zu %11.2f\n", "total", total.misses, total.diskHits,
+                 total.hits, total.produceSeconds);
+    if (const std::shared_ptr<DiskTileCache>& disk = scheduler.diskCache()) {
+        const DiskTileCacheStatistics d = disk->statistics();
+        std::fprintf(stderr,
+                     "disk cache %s: %llu hits, %llu misses, %llu written (%.1f MiB), %llu "
+                     "failed writes, %llu corrupt; read %.2f s, write %.2f s\n",
+                     disk->folder().string().c_str(), static_cast<unsigned long long>(d.hits),
+                     static_cast<unsigned long long>(d.misses),
+                     static_cast<unsigned long long>(d.writes),
+                     static_cast<double>(d.bytesWritten) / (1 << 20),
+                     static_cast<unsigned long long>(d.writeFailures),
+                     static_cast<unsigned long long>(d.corrupt), d.readSeconds, d.writeSeconds);
+    }
+}
+
 // The exit status of a finished (or cancelled) run, after printing its end.
 int finish(const render::BatchSummary& summary, bool progressJson) {
     if (summary.cancelled) {
@@ -202,6 +324,12 @@ int finish(const render::BatchSummary& summary, bool progressJson) {
             "{\"event\": \"done\", \"total\": %zu, \"skipped\": %d, \"failed\": %d, \"degraded\": "
             "%d}\n",
             summary.total, summary.skipped, summary.failed, summary.degraded);
+    }
+    if (summary.transientFailures > 0) {
+        reportError("stopped after a transient failure (" + std::to_string(summary.failed) +
+                    " of " + std::to_string(summary.total) +
+                    " images not written); run again with --resume to continue");
+        return kExitTransient;
     }
     if (summary.failed > 0) {
         reportError(std::to_string(summary.failed) + " of " + std::to_string(summary.total) +
@@ -224,8 +352,13 @@ int runRender(const std::vector<std::string>& arguments) {
                                                                    {"size"},
                                                                    {"gl"},
                                                                    {"shard"},
+                                                                   {"jobs"},
                                                                    {"progress"},
                                                                    {"cache-mb"},
+                                                                   {"disk-cache"},
+                                                                   {"disk-cache-mb"},
+                                                                   {"no-disk-cache", false},
+                                                                   {"tile-stats", false},
                                                                    {"resume", false},
                                                                    {"no-comparisons", false},
                                                                    {"help", false}});
@@ -236,6 +369,14 @@ int runRender(const std::vector<std::string>& arguments) {
     RenderRequest request;
     if (!parseRequest(command, request)) {
         return 2;
+    }
+    // A misspelt SYLVA_GL is a configuration error (exit 1), not a GL context that failed
+    // on this node (exit 75, retried elsewhere): check it before rendering.
+    if (const char* gl = std::getenv("SYLVA_GL"); gl && *gl && !request.options.backend) {
+        if (Result<render::GlBackend> parsed = render::parseBackend(gl); !parsed) {
+            reportError("SYLVA_GL: " + parsed.error().message);
+            return 1;
+        }
     }
     dsl::LoadResult loaded = dsl::loadProject(request.project, loadOptionsFor(command));
     printDiagnostics(loaded);
@@ -259,9 +400,13 @@ int runRender(const std::vector<std::string>& arguments) {
     Result<render::BatchSummary> summary = batch.run(plan.value(), printer, &interrupted);
     std::signal(SIGINT, SIG_DFL);
     std::signal(SIGTERM, SIG_DFL);
+    if (command.has("tile-stats")) {
+        printTileStatistics(batch.scheduler(plan->setup()));
+    }
     if (!summary) {
+        // Only a renderer that cannot be made (no GL context on this node) ends a run here.
         reportError(summary.error().message);
-        return 1;
+        return kExitTransient;
     }
     return finish(summary.value(), request.progressJson);
 }

@@ -1,7 +1,9 @@
 // `sylva bench turnaround [--json] [--size WxH] [--project FILE] [--views NAME]
-//                         [--gl egl|osmesa|glfw]`: how fast a planner sees results on a
+//                         [--gl egl|osmesa|glfw] [--disk-only]`: how fast a planner sees results on
+//                         a
 // real project (bench/TurnaroundBenchmark.h: cold render, warm edit through `watch`,
-// series per image, shard speedup), measured by running this very binary
+// series per image, shard speedup, the disk tile cache's keys), measured by running this very
+// binary
 // (/proc/self/exe) as child processes. Default project projects/olinda/olinda.sylva at
 // 1280×720, views photo_points; its data files must exist (scripts/fetch-samples), else
 // a clear error.
@@ -19,13 +21,20 @@
 namespace sylva::app {
 
 int runTurnaroundBench(const std::vector<std::string>& arguments) {
-    const ParsedCommandLine command = parseCommandLine(
-        arguments, {{"json", false}, {"size"}, {"project"}, {"views"}, {"gl"}, {"help", false}});
+    const ParsedCommandLine command = parseCommandLine(arguments, {{"json", false},
+                                                                   {"size"},
+                                                                   {"project"},
+                                                                   {"views"},
+                                                                   {"gl"},
+                                                                   {"disk-only", false},
+                                                                   {"help", false}});
     if (command.has("help")) {
         std::puts(
             "usage: sylva bench turnaround [--json] [--size WxH] [--project FILE] [--views NAME] "
-            "[--gl egl|osmesa|glfw]\n"
-            "defaults: projects/olinda/olinda.sylva, views photo_points, 1280x720");
+            "[--gl egl|osmesa|glfw] [--disk-only]\n"
+            "defaults: projects/olinda/olinda.sylva, views photo_points, 1280x720\n"
+            "--disk-only: the reduced mode (cold render, series and the disk cache keys; no\n"
+            "warm edit, no shard speedup)");
         return 0;
     }
     if (!command.error.empty() || !command.positional.empty()) {
@@ -42,6 +51,7 @@ int runTurnaroundBench(const std::vector<std::string>& arguments) {
     options.gl = command.get("gl").value_or("egl");
     options.projectFile = command.get("project").value_or("projects/olinda/olinda.sylva");
     options.views = command.get("views").value_or("photo_points");
+    options.diskOnly = command.has("disk-only");
     if (!std::filesystem::is_regular_file(options.projectFile)) {
         reportError("bench turnaround: project '" + options.projectFile.string() +
                     "' not found (run from the repository root or give --project FILE)");

@@ -20,6 +20,12 @@ void printUsage(std::FILE* stream) {
         "  render PROJECT [--views NAME] [--out DIR] [--size WxH] [--gl egl|osmesa|glfw] [-D "
         "name=value]\n"
         "                 render the project's views to images\n"
+        "  jobs PROJECT [--json] [--out DIR]\n"
+        "                 list the series' jobs (indices, groups, outputs, cost, current)\n"
+        "  assemble PROJECT [--out DIR]\n"
+        "                 comparisons, videos and contact sheets from finished images (no GL)\n"
+        "  cache stats|prune|clear [--disk-cache DIR] [--budget-mb N] [--json]\n"
+        "                 inspect or trim the disk tile cache\n"
         "  watch PROJECT [--views NAME] [--camera NAME] [--out DIR] [--size WxH] [--exit-after N]\n"
         "                 re-render on every change of the project or its data (headless)\n"
         "  view PROJECT [--scenario S] [--camera C] [--size WxH] [--budget-ms N] [--script FILE]\n"
@@ -73,6 +79,15 @@ int main(int argc, char** argv) {
     const std::vector<std::string> arguments(argv + 2, argv + argc);
     if (command == "render") {
         return sylva::app::runRender(arguments);
+    }
+    if (command == "jobs") {
+        return sylva::app::runJobs(arguments);
+    }
+    if (command == "assemble") {
+        return sylva::app::runAssemble(arguments);
+    }
+    if (command == "cache") {
+        return sylva::app::runCache(arguments);
     }
     if (command == "watch") {
         return sylva::app::runWatch(arguments);

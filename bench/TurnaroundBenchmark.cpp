@@ -1,6 +1,8 @@
 #include "sylva/bench/TurnaroundBenchmark.h"
 
 #include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -46,16 +48,24 @@ pid_t spawn(const std::vector<std::string>& arguments, const std::filesystem::pa
     ::_exit(127);
 }
 
-// Waits for `child`; its exit status, or -1.
-int waitFor(pid_t child) {
+// Waits for `child`; its exit status, or -1. Adds its CPU seconds (user + system, all
+// its threads) to `cpuSeconds` when given.
+int waitFor(pid_t child, double* cpuSeconds = nullptr) {
     if (child < 0) {
         return -1;
     }
     int status = 0;
-    while (::waitpid(child, &status, 0) < 0) {
+    struct rusage usage {};
+    while (::wait4(child, &status, 0, &usage) < 0) {
         if (errno != EINTR) {
             return -1;
         }
+    }
+    if (cpuSeconds != nullptr) {
+        const auto seconds = [](const timeval& t) {
+            return double(t.tv_sec) + 1e-6 * double(t.tv_usec);
+        };
+        *cpuSeconds += seconds(usage.ru_utime) + seconds(usage.ru_stime);
     }
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
@@ -184,15 +194,21 @@ public:
         return {};
     }
 
-    // 1. Cold: a fresh process for one view.
-    Result<double> cold() const {
+    // 1. Cold: a fresh process for one view, without a disk cache, or (`diskCache`)
+    // with one in `diskCache` (empty: the cold write; filled: the warm-disk start).
+    Result<double> cold(const std::string& name = "cold",
+                        const std::filesystem::path& diskCache = {}) const {
         const auto start = Clock::now();
-        if (waitFor(spawn(renderArguments(kOne, folder_ / "cold", {}), folder_ / "cold.log")) !=
+        const std::filesystem::path log = folder_ / (name + ".log");
+        if (waitFor(spawn(renderArguments(kOne, folder_ / name, diskArguments(diskCache)), log)) !=
             0) {
-            return failed("the cold render", folder_ / "cold.log");
+            return failed("the " + name + " render", log);
         }
         return secondsSince(start);
     }
+
+    // The disk cache folders of the measurements, below the temporary folder.
+    std::filesystem::path cacheFolder(const std::string& name) const { return folder_ / name; }
 
     // 2. Warm: watch the view, edit the colour adjustment, wait for the new image.
     Result<double> warm(const std::string& editedText) const {
@@ -234,11 +250,12 @@ public:
         return seconds;
     }
 
-    // 3. The series in one process: its wall time and image count.
-    Result<std::pair<double, std::size_t>> series() const {
+    // 3. The series in one process: its wall time and image count (and CPU seconds).
+    Result<std::pair<double, std::size_t>> series(double& cpuSeconds) const {
         const auto start = Clock::now();
-        if (waitFor(spawn(renderArguments(options_.views, folder_ / "series", {}),
-                          folder_ / "series.log")) != 0) {
+        if (waitFor(spawn(renderArguments(options_.views, folder_ / "series", diskArguments({})),
+                          folder_ / "series.log"),
+                    &cpuSeconds) != 0) {
             return failed("the series render", folder_ / "series.log");
         }
         const double seconds = secondsSince(start);
@@ -249,17 +266,21 @@ public:
         return std::make_pair(seconds, images);
     }
 
-    // 4. The series in two shard processes at once: their wall time.
-    Result<double> shards() const {
+    // 4. The series in two shard processes at once: their wall time and CPU seconds;
+    // with `diskCache` both share that (initially empty) disk tile cache.
+    Result<double> shards(double& cpuSeconds, const std::filesystem::path& diskCache = {}) const {
         const auto start = Clock::now();
-        const pid_t first =
-            spawn(renderArguments(options_.views, folder_ / "shards", {"--shard", "1/2"}),
-                  folder_ / "shard1.log");
-        const pid_t second =
-            spawn(renderArguments(options_.views, folder_ / "shards", {"--shard", "2/2"}),
-                  folder_ / "shard2.log");
-        const int firstStatus = waitFor(first);
-        const int secondStatus = waitFor(second);
+        const std::string out = diskCache.empty() ? "shards" : "shards-disk";
+        std::vector<std::string> firstArguments = diskArguments(diskCache);
+        std::vector<std::string> secondArguments = firstArguments;
+        firstArguments.insert(firstArguments.end(), {"--shard", "1/2"});
+        secondArguments.insert(secondArguments.end(), {"--shard", "2/2"});
+        const pid_t first = spawn(renderArguments(options_.views, folder_ / out, firstArguments),
+                                  folder_ / "shard1.log");
+        const pid_t second = spawn(renderArguments(options_.views, folder_ / out, secondArguments),
+                                   folder_ / "shard2.log");
+        const int firstStatus = waitFor(first, &cpuSeconds);
+        const int secondStatus = waitFor(second, &cpuSeconds);
         const double seconds = secondsSince(start);
         if (firstStatus != 0) {
             return failed("shard 1/2", folder_ / "shard1.log");
@@ -289,6 +310,15 @@ private:
         list.insert(list.end(), common_.begin(), common_.end());
         list.insert(list.end(), extra.begin(), extra.end());
         return list;
+    }
+
+    // Every measurement names its disk cache: none (--no-disk-cache, so the user's
+    // default cache never makes a "cold" process warm) or a folder of its own.
+    static std::vector<std::string> diskArguments(const std::filesystem::path& diskCache) {
+        if (diskCache.empty()) {
+            return {"--no-disk-cache"};
+        }
+        return {"--disk-cache", diskCache.string()};
     }
 
     static Error failed(const std::string& what, const std::filesystem::path& log) {
@@ -345,30 +375,54 @@ Result<TurnaroundBenchmarkResult> runTurnaroundBenchmark(
     if (Status prepared = run.prepare(original); !prepared) {
         return prepared.error();
     }
+    TurnaroundBenchmarkResult result;
     const Result<double> cold = run.cold();
     if (!cold) {
         return cold.error();
     }
-    const Result<double> warm = run.warm(edited.value());
-    if (!warm) {
-        return warm.error();
+    result.metrics.push_back({"cold_render_s", cold.value()});
+    if (!options.diskOnly) {
+        const Result<double> warm = run.warm(edited.value());
+        if (!warm) {
+            return warm.error();
+        }
+        result.metrics.push_back({"warm_edit_s", warm.value()});
+        result.metrics.push_back({"edit_ratio", warm.value() / cold.value()});
     }
-    const Result<std::pair<double, std::size_t>> series = run.series();
+    // The disk tile cache: a cold process writing it, then a second process reading it.
+    const std::filesystem::path oneCache = run.cacheFolder("disk-cache-one");
+    const Result<double> writing = run.cold("cold-disk", oneCache);
+    if (!writing) {
+        return writing.error();
+    }
+    const Result<double> reading = run.cold("warm-disk", oneCache);
+    if (!reading) {
+        return reading.error();
+    }
+    double seriesCpu = 0;
+    const Result<std::pair<double, std::size_t>> series = run.series(seriesCpu);
     if (!series) {
         return series.error();
     }
-    const Result<double> shards = run.shards();
-    if (!shards) {
-        return shards.error();
-    }
     const auto [seriesSeconds, images] = series.value();
-    TurnaroundBenchmarkResult result;
     result.images = images;
-    result.metrics = {{"cold_render_s", cold.value()},
-                      {"warm_edit_s", warm.value()},
-                      {"edit_ratio", warm.value() / cold.value()},
-                      {"series_s_per_image", seriesSeconds / static_cast<double>(images)},
-                      {"shard_speedup", seriesSeconds / shards.value()}};
+    result.metrics.push_back({"series_s_per_image", seriesSeconds / static_cast<double>(images)});
+    if (!options.diskOnly) {
+        double ignored = 0;
+        const Result<double> shards = run.shards(ignored);
+        if (!shards) {
+            return shards.error();
+        }
+        result.metrics.push_back({"shard_speedup", seriesSeconds / shards.value()});
+    }
+    double shardCpu = 0;
+    const Result<double> sharing = run.shards(shardCpu, run.cacheFolder("disk-cache-shards"));
+    if (!sharing) {
+        return sharing.error();
+    }
+    result.metrics.push_back({"warm_disk_start_ratio", reading.value() / cold.value()});
+    result.metrics.push_back({"shard_cpu_overhead", shardCpu / seriesCpu});
+    result.metrics.push_back({"cache_write_overhead", writing.value() / cold.value()});
     return result;
 }
 

@@ -205,7 +205,7 @@ void BlockChecker::checkRequired(const Block& block, const BlockNode& node,
 // Data paths resolve against the file that wrote them. The model holds them relative to
 // the project file, so a `file = "dem.tif"` in lib/terrain.sylva becomes "lib/dem.tif".
 void BlockChecker::rebasePath(const AttributeNode& attribute, Value& value) const {
-    static const std::vector<std::string> kPathAttributes = {"file", "models"};
+    static const std::vector<std::string> kPathAttributes = {"file", "models", "disk_cache"};
     std::string* text = std::get_if<std::string>(&value.data);
     const auto& writer = attribute.nameLocation.file;
     if (!text || text->empty() || !writer || *writer == "<command line>" ||

@@ -637,6 +637,14 @@ KindSchema renderBlock() {
              number("cache_mb", Dimension::None, 1024, 16, 1048576,
                     "Tile cache budget in MiB (render and watch; --cache-mb overrides it). "
                     "It must hold one frame's tiles, about 250 MiB at 25 levels."),
+             simple("disk_cache", ValueType::String, std::nullopt,
+                    "Folder of the persistent tile cache shared by processes and machines, "
+                    "relative to the project file (render; --disk-cache DIR overrides it, "
+                    "--no-disk-cache turns it off). Default: $SYLVA_CACHE_DIR/tiles, else "
+                    "$XDG_CACHE_HOME/sylva/tiles, else ~/.cache/sylva/tiles."),
+             number("disk_cache_mb", Dimension::None, 16384, 64, 1.0e9,
+                    "Disk tile cache budget in MiB; least recently used tiles are removed "
+                    "beyond it (--disk-cache-mb overrides it)."),
              wordChoice(
                  "vegetation", {"lod", "billboards", "mesh"}, "lod",
                  "How plants are drawn: ray-cast ellipsoid/line levels of detail with the source "

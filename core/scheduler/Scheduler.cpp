@@ -161,7 +161,14 @@ Result<TilePointer> Scheduler::run(std::unique_lock<std::mutex>& lock, const Tas
     const double outerNested = nestedSeconds;
     nestedSeconds = 0.0;
     const auto start = Clock::now();
-    Result<TilePointer> produced = source.produce(id.key, *this);
+    DiskTileCache* disk = options_.diskCache.get();
+    TilePointer stored = disk != nullptr ? disk->load(id.hash, id.key, options_.format) : nullptr;
+    const bool fromDisk = stored != nullptr;
+    Result<TilePointer> produced =
+        fromDisk ? Result<TilePointer>(std::move(stored)) : source.produce(id.key, *this);
+    if (disk != nullptr && !fromDisk && produced) {
+        disk->store(id.hash, options_.format, *produced.value());
+    }
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
     const double own = std::max(0.0, elapsed - nestedSeconds);
     nestedSeconds = outerNested + elapsed;
@@ -179,7 +186,7 @@ Result<TilePointer> Scheduler::run(std::unique_lock<std::mutex>& lock, const Tas
     auto cache = caches_.find(id.hash);
     // A task of an invalidated (or dropped) hash may have read stale inputs: discard.
     if (cache != caches_.end() && cache->second.generation == generation) {
-        ++cache->second.statistics.misses;
+        ++(fromDisk ? cache->second.statistics.diskHits : cache->second.statistics.misses);
         cache->second.statistics.produceSeconds += own;
         if (produced) {
             insertLocked(id, produced.value());
@@ -533,6 +540,7 @@ SchedulerStatistics Scheduler::totals() const {
         const SchedulerStatistics& s = cache.statistics;
         total.hits += s.hits;
         total.misses += s.misses;
+        total.diskHits += s.diskHits;
         total.bytes += s.bytes;
         total.tiles += s.tiles;
         total.evictions += s.evictions;

@@ -98,7 +98,10 @@ Status BatchPlan::select() {
     const std::vector<RenderJob>& all = allJobs_;
     const auto [shardIndex, shardCount] = selection_.shard;
     jobs_ = shardCount > 1 ? ViewSeries::shard(all, shardIndex, shardCount) : all;
-    if (const std::optional<JobRange>& range = selection_.range) {
+    if (std::optional<JobRange>& range = selection_.range) {
+        if (selection_.clampRange && range->first <= range->last && range->first < all.size()) {
+            range->last = std::min(range->last, all.size() - 1);
+        }
         if (range->first > range->last || range->last >= all.size()) {
             return Error{"jobs " + std::to_string(range->first) + "-" +
                          std::to_string(range->last) + " are not within the series' jobs 0-" +
@@ -260,8 +263,68 @@ Status BatchPlan::prepareOutputs() {
     return selection_.resume ? loadManifest() : Status();
 }
 
+namespace {
+
+// Whether `file` (the run's own manifest) is a shard's or range's, so the plain
+// NAME.json of whole-series runs is one of the others to consult.
+bool entryFileIsOther(const std::filesystem::path& file, const BatchSelection& selection) {
+    return file.filename() != selection.manifestName + ".json";
+}
+
+}  // namespace
+
 Status BatchPlan::loadManifest() {
-    return manifest_ ? manifest_->load() : Status();
+    if (!manifest_) {
+        return {};
+    }
+    if (Status loaded = manifest_->load(); !loaded) {
+        return loaded;
+    }
+    // The other shards' and ranges' manifests of the same name in the same folder.
+    otherManifests_.clear();
+    std::error_code error;
+    const std::string prefix = selection_.manifestName + ".";
+    std::vector<std::filesystem::path> files;
+    for (const auto& entry : std::filesystem::directory_iterator(selection_.outputFolder, error)) {
+        const std::string name = entry.path().filename().string();
+        if (entry.path() != manifest_->file() && name.starts_with(prefix) &&
+            name.ends_with(".json") && name.size() > prefix.size() + 5) {
+            files.push_back(entry.path());
+        }
+    }
+    std::sort(files.begin(), files.end());
+    if (entryFileIsOther(manifest_->file(), selection_)) {
+        files.push_back(selection_.outputFolder / (selection_.manifestName + ".json"));
+    }
+    for (const std::filesystem::path& file : files) {
+        RenderManifest other(file);
+        if (Status loaded = other.load(); !loaded) {
+            return loaded;
+        }
+        otherManifests_.push_back(std::move(other));
+    }
+    return {};
+}
+
+BatchPlan::RecordState BatchPlan::recordState(const RenderJob& job) const {
+    if (!manifest_) {
+        return RecordState::Missing;
+    }
+    const std::string output = relativeOutput(job.output);
+    const std::uint64_t hash = hashOf(job);
+    RecordState state = RecordState::Missing;
+    const auto consult = [&](const RenderManifest& manifest) {
+        if (manifest.isCurrent(output, hash)) {
+            state = RecordState::Current;
+        } else if (manifest.entries().count(output) != 0 && state == RecordState::Missing) {
+            state = RecordState::Stale;
+        }
+    };
+    consult(*manifest_);
+    for (const RenderManifest& other : otherManifests_) {
+        consult(other);
+    }
+    return state;
 }
 
 std::uint64_t BatchPlan::hashOf(const RenderJob& job) const {
@@ -352,15 +415,21 @@ bool BatchPlan::isCurrent(const RenderJob& job) const {
     if (!selection_.resume || !manifest_) {
         return false;
     }
+    const auto currentAnywhere = [&](const std::string& output, std::uint64_t hash) {
+        return manifest_->isCurrent(output, hash) ||
+               std::any_of(
+                   otherManifests_.begin(), otherManifests_.end(),
+                   [&](const RenderManifest& other) { return other.isCurrent(output, hash); });
+    };
     // A video whose file is current needs none of its frames.
     if (job.video) {
         const auto video = hashes_.find(*job.video);
         if (video != hashes_.end() &&
-            manifest_->isCurrent(relativeOutput(allJobs_[*job.video].output), video->second)) {
+            currentAnywhere(relativeOutput(allJobs_[*job.video].output), video->second)) {
             return true;
         }
     }
-    return manifest_->isCurrent(relativeOutput(job.output), hashOf(job));
+    return currentAnywhere(relativeOutput(job.output), hashOf(job));
 }
 
 Status BatchPlan::record(const ManifestEntry& entry) {
@@ -382,10 +451,15 @@ std::filesystem::path BatchPlan::manifestFile() const {
         return {};
     }
     const auto [index, count] = selection_.shard;
-    return selection_.outputFolder /
-           (count > 1 ? selection_.manifestName + ".shard-" + std::to_string(index) + "-of-" +
-                            std::to_string(count) + ".json"
-                      : selection_.manifestName + ".json");
+    std::string name = selection_.manifestName;
+    if (count > 1) {
+        name += ".shard-" + std::to_string(index) + "-of-" + std::to_string(count);
+    }
+    if (selection_.range) {
+        name += ".jobs-" + std::to_string(selection_.range->first) + "-" +
+                std::to_string(selection_.range->last);
+    }
+    return selection_.outputFolder / (name + ".json");
 }
 
 bool BatchPlan::wholeSeries() const {

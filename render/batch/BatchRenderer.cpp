@@ -1,6 +1,10 @@
 #include "sylva/render/batch/BatchRenderer.h"
 
+#include <sys/statvfs.h>
+
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <utility>
 
 #include "sylva/core/base/Check.h"
@@ -9,6 +13,23 @@
 #include "sylva/render/batch/SeriesAssembler.h"
 
 namespace sylva::render {
+namespace {
+
+// Whether a failed write of `bytes` into `output`'s folder failed for want of space: the
+// reason says so, or the filesystem has less room than the image uncompressed (the
+// writer removed its partial file, so the space it took is free again).
+bool outOfSpace(const std::filesystem::path& output, std::size_t bytes, const std::string& reason) {
+    if (reason.find(std::strerror(ENOSPC)) != std::string::npos ||
+        reason.find(std::strerror(EDQUOT)) != std::string::npos) {
+        return true;
+    }
+    struct statvfs filesystem {};
+    const std::filesystem::path folder = output.has_parent_path() ? output.parent_path() : ".";
+    return ::statvfs(folder.c_str(), &filesystem) == 0 &&
+           static_cast<std::uint64_t>(filesystem.f_bavail) * filesystem.f_frsize < bytes;
+}
+
+}  // namespace
 
 BatchRenderer::BatchRenderer(BatchOptions options) : options_(std::move(options)) {}
 
@@ -41,8 +62,21 @@ Result<RenderSetup> BatchRenderer::setup() const {
     SYLVA_CHECK(project_.has_value());
     Result<RenderSetup> setup =
         RenderSetup::fromModel(project_->defaultModel(), options_.width, options_.height);
-    if (setup && options_.cacheMegabytes) {
+    if (!setup) {
+        return setup;
+    }
+    if (options_.cacheMegabytes) {
         setup->cacheMegabytes = *options_.cacheMegabytes;
+    }
+    if (options_.diskCacheMegabytes) {
+        setup->diskCacheMegabytes = *options_.diskCacheMegabytes;
+    }
+    if (options_.diskCacheDisabled) {
+        setup->diskCacheFolder.reset();
+    } else if (options_.diskCacheFolder) {
+        setup->diskCacheFolder = options_.diskCacheFolder;
+    } else if (!setup->diskCacheFolder && options_.diskCacheByDefault) {
+        setup->diskCacheFolder = DiskTileCache::defaultFolder();
     }
     return setup;
 }
@@ -104,6 +138,13 @@ Scheduler& BatchRenderer::scheduler(const RenderSetup& setup) {
         SchedulerOptions schedulerOptions;
         schedulerOptions.format = TileFormat{setup.terrain.clipmapSize, 2};
         schedulerOptions.budgetBytes = setup.cacheMegabytes << 20;
+        if (setup.diskCacheFolder) {
+            DiskTileCacheOptions disk;
+            disk.folder = *setup.diskCacheFolder;
+            disk.budgetBytes = setup.diskCacheMegabytes << 20;
+            disk.warningSink = options_.warningSink;
+            schedulerOptions.diskCache = std::make_shared<DiskTileCache>(std::move(disk));
+        }
         scheduler_ = std::make_unique<Scheduler>(schedulerOptions);
     }
     return *scheduler_;
@@ -113,18 +154,22 @@ Result<BatchSummary> BatchRenderer::run(BatchPlan& plan, BatchListener& listener
                                         const std::atomic<bool>* cancel) {
     BatchRun run(plan, listener, cancel);
     const std::size_t tilesBefore = scheduler_ ? scheduler_->totals().misses : 0;
+    const std::size_t diskBefore = scheduler_ ? scheduler_->totals().diskHits : 0;
     if (Status rendered = renderImages(run); !rendered) {
         return rendered.error();
     }
     SeriesAssembler assembler(run);
-    assembler.assemble();
-    if (!run.cancelled()) {
+    if (!run.stoppedTransiently()) {
+        assembler.assemble();
+    }
+    if (!run.cancelled() && !run.stoppedTransiently()) {
         assembler.writeContactSheets();
     }
     BatchSummary summary = run.summary();
     if (scheduler_) {
         summary.tilesProduced = scheduler_->totals().misses - tilesBefore;
         summary.tilesCached = scheduler_->totals().tiles;
+        summary.tilesFromDisk = scheduler_->totals().diskHits - diskBefore;
     }
     return summary;
 }
@@ -134,7 +179,7 @@ Status BatchRenderer::renderImages(BatchRun& run) {
         if (job.kind != RenderJobKind::Image) {
             continue;
         }
-        if (run.cancelled()) {
+        if (run.cancelled() || run.stoppedTransiently()) {
             return {};
         }
         if (run.skipIfCurrent(job)) {
@@ -177,7 +222,14 @@ Status BatchRenderer::renderImage(BatchRun& run, const RenderJob& job) {
     }
     if (Status written = ImageOutput::write(job.output, image.value(), plan.metadataFor(job));
         !written) {
-        run.fail(job, written.error().message);
+        const std::size_t bytes = static_cast<std::size_t>(image.value().width) *
+                                      static_cast<std::size_t>(image.value().height) * 8 +
+                                  (64u << 10);
+        if (outOfSpace(job.output, bytes, written.error().message)) {
+            run.failTransiently(job, written.error().message + " (the disk is full)");
+        } else {
+            run.fail(job, written.error().message);
+        }
         return {};
     }
     JobReport report;

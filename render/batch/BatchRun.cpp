@@ -41,6 +41,11 @@ void BatchRun::fail(const RenderJob& job, const std::string& message) {
     failedJobs_.insert(job.index);
 }
 
+void BatchRun::failTransiently(const RenderJob& job, const std::string& message) {
+    fail(job, message);
+    ++summary_.transientFailures;
+}
+
 void BatchRun::degrade(const std::string& message) {
     listener_.error(message);
     ++summary_.degraded;
@@ -55,7 +60,9 @@ double BatchRun::record(const RenderJob& job, std::chrono::steady_clock::time_po
         entry.frame = frames;
     }
     if (Status saved = plan_.record(entry); !saved) {
-        listener_.error(saved.error().message);
+        // The image is written but not recorded (a full disk, a shared filesystem that
+        // failed): retrying with --resume redoes it, so the run stops as transient.
+        failTransiently(job, saved.error().message);
     }
     return entry.seconds;
 }

@@ -67,6 +67,13 @@ Result<RenderSetup> RenderSetup::fromModel(const ProjectModel& model, int overri
     setup.terrain.maxLevel = static_cast<int>(renderBlock.optionalNumber("max_level").value_or(24));
     setup.cacheMegabytes =
         static_cast<std::size_t>(renderBlock.optionalNumber("cache_mb").value_or(1024));
+    if (const Value* folder = renderBlock.value("disk_cache");
+        folder && folder->get<std::string>()) {
+        std::filesystem::path path(*folder->get<std::string>());
+        setup.diskCacheFolder = path.is_absolute() ? path : model.file.parent_path() / path;
+    }
+    setup.diskCacheMegabytes =
+        static_cast<std::uint64_t>(renderBlock.optionalNumber("disk_cache_mb").value_or(16384));
     const Value* vegetationValue = renderBlock.value("vegetation");
     const std::string vegetation = vegetationValue && vegetationValue->get<Word>()
                                        ? vegetationValue->get<Word>()->text

@@ -7,6 +7,7 @@
 
 #include <cpl_conv.h>
 #include <cpl_error.h>
+#include <cpl_string.h>
 #include <gdal.h>
 #include <ogr_srs_api.h>
 
@@ -30,6 +31,9 @@ struct RasterSource::Info {
     std::vector<double> bandOffset;
     bool byteData = false;
     double unitFactor = 1.0;  // metres per vertical unit
+    // Every file GDAL reads for the dataset besides `path` (.aux.xml, .ovr, world files,
+    // a VRT's sources), so their edits change the content hash too.
+    std::vector<std::string> companionFiles;
 };
 
 namespace {
@@ -205,6 +209,14 @@ Result<RasterSource::Info> probe(const RasterParameters& p, RasterKind& kind) {
     if (Status bands = chooseBands(p, dataset, bandCount, kind, info); !bands) {
         return bands.error();
     }
+    if (char** list = GDALGetFileList(dataset); list != nullptr) {
+        for (char** file = list; *file != nullptr; ++file) {
+            if (std::string(*file) != info.path) {
+                info.companionFiles.emplace_back(*file);
+            }
+        }
+        CSLDestroy(list);
+    }
     return info;
 }
 
@@ -291,12 +303,22 @@ RasterSource::RasterSource(std::string name, PortType output, int channels,
         hash.add(b);
     }
     hash.add(p.srgb.has_value() ? (*p.srgb ? 1 : 2) : 0).add(p.fill).add(coverageOnly);
-    // The file's size and modification time: an edited file gives new tiles.
-    std::error_code ec;
-    const auto size = std::filesystem::file_size(p.file, ec);
-    hash.add(static_cast<std::uint64_t>(ec ? 0 : size));
-    const auto time = std::filesystem::last_write_time(p.file, ec);
-    hash.add(static_cast<std::int64_t>(ec ? 0 : time.time_since_epoch().count()));
+    // The size and modification time (ns) of the file and of every file GDAL reads with
+    // it: an edited file gives new tiles, in memory and in the disk tile cache.
+    const auto addIdentity = [&hash](const std::filesystem::path& file) {
+        std::error_code ec;
+        const auto size = std::filesystem::file_size(file, ec);
+        hash.add(static_cast<std::uint64_t>(ec ? 0 : size));
+        const auto time = std::filesystem::last_write_time(file, ec);
+        hash.add(static_cast<std::int64_t>(ec ? 0 : time.time_since_epoch().count()));
+    };
+    addIdentity(p.file);
+    if (info_) {
+        for (const std::string& file : info_->companionFiles) {
+            hash.add(file);
+            addIdentity(file);
+        }
+    }
     setParameterHash(hash.value());
     if (info_) {
         lonLatBounds_ = computeLonLatBounds(*info_);

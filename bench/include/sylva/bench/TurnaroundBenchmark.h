@@ -13,8 +13,18 @@
 //                       `photo_points`: 3 cameras × 2 scenarios × 2 times = 12 images,
 //                       --no-comparisons) divided by its image count;
 //   shard_speedup       that series' wall time over the wall time of two `--shard i/2`
-//                       processes started together (target ≥ 1.6).
-// Every process starts with cold caches. Seconds of wall time.
+//                       processes started together (target ≥ 1.6);
+//   warm_disk_start_ratio  a second one-view process whose disk tile cache the first
+//                       filled, over cold_render_s (target ≤ 0.3);
+//   shard_cpu_overhead  CPU seconds (user + system) of two `--shard i/2` processes
+//                       sharing one initially empty disk cache, over the CPU seconds of
+//                       the one-process series (target ≤ 1.1);
+//   cache_write_overhead  the first of those one-view processes (cold, writing the disk
+//                       cache) over cold_render_s (target ≤ 1.1).
+// Every process starts with cold memory; all but the disk cache measurements run with
+// --no-disk-cache (so the user's default disk cache never warms them), those use empty
+// folders of their own. Seconds of wall time. With `diskOnly` (`--disk-only`, the
+// reduced mode) warm_edit_s, edit_ratio and shard_speedup are not measured.
 #pragma once
 
 #include <cstddef>
@@ -35,6 +45,7 @@ struct TurnaroundBenchmarkOptions {
     std::string views = "photo_points";  // the series measured
     int width = 1280, height = 720;      // --size of every process
     std::string gl = "egl";              // --gl of every process, passed as given
+    bool diskOnly = false;               // the reduced mode (see above)
 };
 
 struct TurnaroundBenchmarkResult {

@@ -707,3 +707,40 @@ TEST(RasterSource, CreateResolvesPathsAgainstTheProjectFolder) {
 
 }  // namespace
 }  // namespace sylva
+
+namespace sylva {
+namespace {
+
+// The content hash covers every file GDAL reads for the dataset, so a persistent tile
+// cache never serves tiles of an edited VRT source (the VRT itself is unchanged).
+TEST(RasterSource, EditingAVrtsSourceFileChangesTheContentHash) {
+    const auto value = [](double offset) {
+        return [offset](int, int c, int r) { return offset + c + r; };
+    };
+    const std::filesystem::path tif = writeRaster("vrt_source.tif", 16, 16, 1, GDT_Float32,
+                                                  value(0.0), wktOf(32725), &kUtmTransform);
+    const std::filesystem::path vrt = tempFolder() / "mosaic.vrt";
+    GDALDatasetH source = GDALOpen(tif.c_str(), GA_ReadOnly);
+    ASSERT_NE(source, nullptr);
+    GDALDatasetH built = GDALBuildVRT(vrt.c_str(), 1, &source, nullptr, nullptr, nullptr);
+    ASSERT_NE(built, nullptr);
+    GDALClose(built);
+    GDALClose(source);
+    const auto hashOf = [&] {
+        RasterParameters p;
+        p.file = vrt;
+        auto opened = RasterSource::open("mosaic", p);
+        return opened->contentHash();
+    };
+    const std::uint64_t before = hashOf();
+    EXPECT_EQ(hashOf(), before);  // deterministic
+    const auto vrtTime = std::filesystem::last_write_time(vrt);
+    // Same size, other values, a later modification time; the VRT stays as it was.
+    writeRaster("vrt_source.tif", 16, 16, 1, GDT_Float32, value(100.0), wktOf(32725),
+                &kUtmTransform);
+    std::filesystem::last_write_time(tif, vrtTime + std::chrono::seconds(5));
+    EXPECT_NE(hashOf(), before);
+}
+
+}  // namespace
+}  // namespace sylva

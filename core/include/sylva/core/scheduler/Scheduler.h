@@ -45,6 +45,7 @@
 #include <vector>
 
 #include "sylva/core/sources/Source.h"
+#include "sylva/core/tiles/DiskTileCache.h"
 
 namespace sylva {
 
@@ -56,6 +57,10 @@ struct SchedulerOptions {
     // Called once per failed tile (from a worker or the requesting thread, never under
     // the scheduler's lock).
     std::function<void(const Error&)> failureSink;
+    // The persistent tile cache (none: memory only). A tile missing from memory is read
+    // from it before producing and written to it after (on the producing thread, outside
+    // the lock). Shared: several schedulers may use one.
+    std::shared_ptr<DiskTileCache> diskCache;
 };
 
 // Per source content hash, or the total over all sources.
@@ -63,6 +68,7 @@ struct SchedulerStatistics {
     std::string name;           // the first source seen with this hash (empty for totals)
     std::size_t hits = 0;       // requests answered from the cache
     std::size_t misses = 0;     // tiles produced
+    std::size_t diskHits = 0;   // tiles read from the disk cache instead of produced
     std::size_t bytes = 0;      // bytes cached now
     std::size_t tiles = 0;      // tiles cached now
     std::size_t evictions = 0;  // tiles pruned for the budget
@@ -122,6 +128,7 @@ public:
     SchedulerStatistics totals() const;
     std::vector<SchedulerStatistics> statisticsPerSource() const;
     std::size_t budgetBytes() const;
+    const std::shared_ptr<DiskTileCache>& diskCache() const { return options_.diskCache; }
     void setBudgetBytes(std::size_t bytes);
     std::size_t peakCachedBytes() const;
     std::size_t queuedTasks() const;

@@ -46,6 +46,9 @@ struct BatchSelection {
     std::string views;                // one views block; every views block when empty
     std::pair<int, int> shard{1, 1};  // shard i of N (ViewSeries::shard)
     std::optional<JobRange> range;    // only jobs whose index lies in the range
+    // A range reaching past the last job ends at it (render farms cut the series into
+    // fixed-size chunks); a range starting past it is still an error.
+    bool clampRange = false;
     // Compare/blend images and the videos made of them (and the contact sheets).
     bool comparisons = true;
     // Watching one viewpoint at a time: only Image jobs, only the first frame of each
@@ -55,8 +58,10 @@ struct BatchSelection {
     std::optional<std::string> viewpoint;
     // Skip jobs whose manifest record is current (and videos whose file is).
     bool resume = false;
-    // Record finished jobs in OUTPUT/NAME.json (NAME.shard-i-of-N.json for a shard, so
-    // parallel processes never write one file); false: no manifest at all.
+    // Record finished jobs in OUTPUT/NAME.json (NAME.shard-i-of-N.json for a shard,
+    // NAME.jobs-A-B.json for a range, so parallel processes never write one file); false:
+    // no manifest at all. Reading (resume, isCurrent) also consults every other
+    // OUTPUT/NAME*.json, so a run finds what other shards and ranges finished.
     bool manifest = true;
     std::string manifestName = "manifest";
 };
@@ -107,8 +112,13 @@ public:
     ImageMetadata sheetMetadata(const std::string& view) const;
     // The manifest record of `job` before it is made (no timing yet).
     ManifestEntry entryFor(const RenderJob& job) const;
-    // With resume: whether the job, or the video it is a frame of, is recorded current.
+    // With resume: whether the job, or the video it is a frame of, is recorded current
+    // (in this run's manifest or another shard's or range's; the file exists).
     bool isCurrent(const RenderJob& job) const;
+    // After loadManifest: Current (recorded with this hash, file present), Stale
+    // (recorded with another hash, or the file is gone) or Missing (no record).
+    enum class RecordState { Missing, Stale, Current };
+    RecordState recordState(const RenderJob& job) const;
     // Records a finished job and saves the manifest atomically (a no-op without one).
     Status record(const ManifestEntry& entry);
     // `output` relative to the output folder ("today/beach_0900.png").
@@ -147,6 +157,7 @@ private:
     std::map<std::size_t, TerrainLayers> layers_;  // by job index, Image jobs
     std::map<std::string, CameraPath> paths_;      // by path name
     std::optional<RenderManifest> manifest_;
+    std::vector<RenderManifest> otherManifests_;  // other shards' and ranges' (read only)
     std::string ffmpeg_;
     std::uint64_t projectHash_ = 0;
     std::string projectPath_;

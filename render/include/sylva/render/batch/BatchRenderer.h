@@ -23,6 +23,9 @@
 
 #include <atomic>
 #include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -51,6 +54,16 @@ struct BatchOptions {
     // with the GLFW back end only (others ignore it).
     bool visibleWindow = false;
     std::string windowTitle = "Sylva";
+    // The disk tile cache folder: `diskCacheDisabled` (--no-disk-cache) wins, then
+    // `diskCacheFolder` (--disk-cache), then the render block's disk_cache, then, when
+    // `diskCacheByDefault` (the CLI), DiskTileCache::defaultFolder(); else none.
+    bool diskCacheDisabled = false;
+    std::optional<std::filesystem::path> diskCacheFolder;
+    bool diskCacheByDefault = false;
+    std::optional<std::uint64_t> diskCacheMegabytes;  // else render { disk_cache_mb }
+    // Receives the disk cache's warnings (unwritable folder, corrupt entry), each kind
+    // once per process; from any thread.
+    std::function<void(const std::string&)> warningSink;
 };
 
 class BatchRenderer {

@@ -28,9 +28,13 @@ struct BatchSummary {
     int failed = 0;          // not written
     int degraded = 0;        // written with coarser terrain than wanted (not recorded)
     bool cancelled = false;  // stopped by the cancel flag before every job was done
+    // Failures worth retrying later (the output disk is full): the run stopped at the
+    // first; finished files are recorded, so `--resume` continues (exit code 75).
+    int transientFailures = 0;
     // Tiles the Scheduler produced during the run, and the tiles cached at its end.
     std::size_t tilesProduced = 0;
     std::size_t tilesCached = 0;
+    std::size_t tilesFromDisk = 0;  // read from the disk tile cache instead of produced
 };
 
 class BatchRun {
@@ -46,6 +50,10 @@ public:
     bool skipIfCurrent(const RenderJob& job);
     // The job could not be made: reports `message`, counts it.
     void fail(const RenderJob& job, const std::string& message);
+    // A failure that another attempt may not have (the disk is full): counted in
+    // `failed` and `transientFailures`; the image phase stops after it.
+    void failTransiently(const RenderJob& job, const std::string& message);
+    bool stoppedTransiently() const { return summary_.transientFailures > 0; }
     bool failed(std::size_t jobIndex) const { return failedJobs_.count(jobIndex) != 0; }
     // The image was written with missing data: reports `message`, counts it (the job
     // is not recorded, so --resume makes it again).
