@@ -18,6 +18,7 @@ int runDump(const std::vector<std::string>& arguments);
 int runDoc(const std::vector<std::string>& arguments);
 int runBench(const std::vector<std::string>& arguments);
 int runTerrainBench(const std::vector<std::string>& arguments);
+int runShadingBench(const std::vector<std::string>& arguments);
 int runTilesBench(const std::vector<std::string>& arguments);
 int runVegetationBench(const std::vector<std::string>& arguments);
 int runPlant(const std::vector<std::string>& arguments);

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <string>
 
+#include "sylva/core/atmosphere/Exposure.h"
+#include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/sources/plants/PlantModelSource.h"
 #include "sylva/core/sources/plants/PlantsSource.h"
 #include "sylva/core/terrain/ElevationQuery.h"
@@ -172,7 +174,10 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     ShadingSettings shading;
     shading.sunDirection = settings.sunDirection;
     shading.atmosphere = settings.atmosphere;
-    shading.exposure = settings.exposure;
+    shading.atmosphereParameters = settings.atmosphereParameters;
+    statistics_.ev100 =
+        settings.ev100 ? *settings.ev100 : meterEv100(camera, groundHeight, settings);
+    shading.exposure = exposureScale(statistics_.ev100) * settings.exposure;
     shading_->run(gbuffer_, output_, camera, projection, near, shading);
     Image image;
     image.width = settings.width;
@@ -187,6 +192,18 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     statistics_.gpuSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return image;
+}
+
+double SceneRenderer::meterEv100(const Camera& camera, double groundHeight,
+                                 const RenderSettings& settings) {
+    const AtmosphereParameters& atmosphere = settings.atmosphereParameters;
+    const bool inSpace = camera.geodetic.height > atmosphere.topRadius - atmosphere.bottomRadius;
+    // From space the day side is what is seen: meter for the sun at the zenith.
+    const Geodetic ground{camera.geodetic.latitude, camera.geodetic.longitude, groundHeight};
+    const glm::dvec3 point = Ellipsoid::toEcef(ground);
+    const glm::dvec3 sun = inSpace ? Ellipsoid::surfaceNormal(ground.latitude, ground.longitude)
+                                   : settings.sunDirection;
+    return ev100FromIlluminance(luminance(shading_->horizontalIlluminance(point, sun, atmosphere)));
 }
 
 Result<std::vector<VegetationStreamLayer>> SceneRenderer::vegetationLayers(
