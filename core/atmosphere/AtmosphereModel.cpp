@@ -12,8 +12,8 @@ constexpr int kTransmittanceSteps = 512;  // transmittanceToTop
 constexpr int kInnerSunSteps = 64;        // sun transmittance inside the Psi_ms integral
 constexpr int kSingleSteps = 512;         // single scattering along the view ray
 constexpr int kSingleSunSteps = 128;      // its sun transmittance
-constexpr int kMultipleSteps = 96;        // Psi_ms samples along the view ray
-constexpr int kSphereDirections = 256;    // Psi_ms: directions over the sphere
+constexpr int kMultipleSteps = 64;        // Psi_ms samples along the view ray
+constexpr int kSphereDirections = 128;    // Psi_ms: directions over the sphere
 constexpr int kSphereSteps = 40;          // Psi_ms: steps along each direction
 
 double rayleighPhase(double mu) {

@@ -51,9 +51,11 @@ vec2 atmosphereSegment(vec3 origin, vec3 direction) {
 }
 
 // Scattered light and transmittance along the ray up to `maxDistance` (or the planet, or
-// out of the atmosphere), `steps` samples spaced quadratically (denser near the start).
+// out of the atmosphere), `steps` samples spaced quadratically: denser near the start
+// (a camera in the air), or with `denseAtEnd` near the end (a ray from space down to the
+// ground, where the air is densest; even steps there alias into rings around the nadir).
 void integrateScatteringTo(vec3 origin, vec3 direction, vec3 sun, float maxDistance, int steps,
-                           out vec3 radiance, out vec3 transmittance) {
+                           bool denseAtEnd, out vec3 radiance, out vec3 transmittance) {
     radiance = vec3(0.0);
     transmittance = vec3(1.0);
     vec2 segment = atmosphereSegment(origin, direction);
@@ -67,15 +69,16 @@ void integrateScatteringTo(vec3 origin, vec3 direction, vec3 sun, float maxDista
     float previous = segment.x;
     for (int i = 1; i <= steps; ++i) {
         float f = float(i) / float(steps);
-        float t = segment.x + (segment.y - segment.x) * f * f;
+        float spacing = denseAtEnd ? 1.0 - (1.0 - f) * (1.0 - f) : f * f;
+        float t = segment.x + (segment.y - segment.x) * spacing;
         scatterSegment(origin, direction, previous, t, sun, phaseRayleigh, phaseMie, 1.0, radiance,
                        transmittance);
         previous = t;
     }
 }
 
-// The same along the whole ray.
+// The same along the whole ray, denser near the start.
 void integrateScattering(vec3 origin, vec3 direction, vec3 sun, int steps, out vec3 radiance,
                          out vec3 transmittance) {
-    integrateScatteringTo(origin, direction, sun, 1e30, steps, radiance, transmittance);
+    integrateScatteringTo(origin, direction, sun, 1e30, steps, false, radiance, transmittance);
 }

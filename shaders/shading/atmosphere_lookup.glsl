@@ -40,8 +40,8 @@ vec3 atmosphereSkyIrradiance(vec3 point, vec3 sun) {
 void atmosphereAerialPerspective(vec2 uv, vec3 origin, vec3 direction, vec3 sun, float distance,
                                  out vec3 inscattered, out vec3 transmittance) {
     if (length(origin) >= uTopRadius - 10.0) {
-        integrateScatteringTo(origin, direction, sun, distance,
-                              SPACE_SKY_STEPS, inscattered, transmittance);
+        integrateScatteringTo(origin, direction, sun, distance, SPACE_SKY_STEPS, true, inscattered,
+                              transmittance);
         inscattered *= uSunIlluminance;
         return;
     }
