@@ -631,8 +631,23 @@ KindSchema renderBlock() {
                     "Sky, limb glow and aerial perspective (haze)."),
              simple("ocean", ValueType::Bool, boolean(true),
                     "Clamp terrain below 0 m to a flat sea surface."),
+             number("visibility", Dimension::Length, 40000.0, 100.0, 280000.0,
+                    "Meteorological range (Koschmieder): the distance at which a black object's "
+                    "contrast against the horizon sky falls to 2 %. Sets the ground-level "
+                    "extinction at 550 nm to 3.912 / visibility (Rayleigh air plus aerosols); "
+                    "40 km is a clear day, 10 km hazy, 280 km air without aerosols."),
+             number("haze_height", Dimension::Length, 1200.0, 100.0, 20000.0,
+                    "Scale height of the aerosols (haze): their density falls by 1/e per "
+                    "haze_height of altitude; larger values thicken the haze seen from above."),
+             optionalNumber("ev100", Dimension::None, -10.0, 25.0,
+                            "Camera exposure value at ISO 100 (a physical camera: 15 for sunny "
+                            "noon, about 0 at dusk). Absent: metered for each view from the sun "
+                            "and sky light at the ground under the camera (incident-light "
+                            "metering, ISO 2720), so one viewpoint and time get one exposure "
+                            "in every scenario."),
              number("exposure", Dimension::None, 1.0, 0.01, 100.0,
-                    "Scale applied to radiance before tone mapping."),
+                    "Scale applied to the exposed radiance before tone mapping (2 = one "
+                    "stop brighter than ev100 or the metered exposure)."),
              number("max_level", Dimension::None, 24, 4, 28, "Finest clipmap level drawn."),
              number("cache_mb", Dimension::None, 1024, 16, 1048576,
                     "Tile cache budget in MiB (render and watch; --cache-mb overrides it). "

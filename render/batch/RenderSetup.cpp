@@ -64,6 +64,14 @@ Result<RenderSetup> RenderSetup::fromModel(const ProjectModel& model, int overri
     settings.atmosphere = renderBlock.boolean("atmosphere", true);
     settings.ocean = renderBlock.boolean("ocean", true);
     settings.exposure = renderBlock.optionalNumber("exposure").value_or(1.0);
+    settings.ev100 = renderBlock.optionalNumber("ev100");
+    Result<AtmosphereParameters> atmosphere = AtmosphereParameters::fromVisibility(
+        renderBlock.optionalNumber("visibility").value_or(40000.0),
+        renderBlock.optionalNumber("haze_height").value_or(1200.0));
+    if (!atmosphere) {
+        return Error{renderBlock.where("visibility") + atmosphere.error().message};
+    }
+    settings.atmosphereParameters = atmosphere.value();
     setup.terrain.maxLevel = static_cast<int>(renderBlock.optionalNumber("max_level").value_or(24));
     setup.cacheMegabytes =
         static_cast<std::size_t>(renderBlock.optionalNumber("cache_mb").value_or(1024));

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <string>
 
+#include "sylva/core/atmosphere/Exposure.h"
+#include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/sources/plants/PlantModelSource.h"
 #include "sylva/core/sources/plants/PlantsSource.h"
 #include "sylva/core/terrain/ElevationQuery.h"
@@ -102,6 +104,7 @@ Result<LevelRange> SceneRenderer::prepareTerrain(const TerrainLayers& layers,
     if (settings.ocean) {
         groundHeight = std::max(groundHeight, 0.0);
     }
+    groundHeight_ = groundHeight;
     const double aboveTerrain = camera.geodetic.height - groundHeight;
     if (aboveTerrain <= 0.0) {
         char buffer[160];
@@ -170,7 +173,8 @@ void SceneRenderer::drawSample(const Camera& camera, const glm::dmat4& projectio
     ShadingSettings shading;
     shading.sunDirection = settings.sunDirection;
     shading.atmosphere = settings.atmosphere;
-    shading.exposure = settings.exposure;
+    shading.atmosphereParameters = settings.atmosphereParameters;
+    shading.exposure = exposureScale(statistics_.ev100) * settings.exposure;
     shading_->run(gbuffer_, output_, camera, projection, near_, shading);
 }
 
@@ -194,6 +198,9 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
         return ready.error();
     }
     const LevelRange levels = ready.value();
+    // One exposure for every sample (and every scenario of the viewpoint and time).
+    statistics_.ev100 =
+        settings.ev100 ? *settings.ev100 : meterEv100(camera, groundHeight_, settings);
     const auto start = std::chrono::steady_clock::now();
     statistics_.vegetation = {};
     statistics_.terrainPassSeconds = 0;
@@ -277,6 +284,18 @@ void SceneRenderer::drawMeshes(const Camera& camera, const glm::dmat4& projectio
     statistics_.meshes = meshes_->statistics();
     statistics_.meshPassSeconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double SceneRenderer::meterEv100(const Camera& camera, double groundHeight,
+                                 const RenderSettings& settings) {
+    const AtmosphereParameters& atmosphere = settings.atmosphereParameters;
+    const bool inSpace = camera.geodetic.height > atmosphere.topRadius - atmosphere.bottomRadius;
+    // From space the day side is what is seen: meter for the sun at the zenith.
+    const Geodetic ground{camera.geodetic.latitude, camera.geodetic.longitude, groundHeight};
+    const glm::dvec3 point = Ellipsoid::toEcef(ground);
+    const glm::dvec3 sun = inSpace ? Ellipsoid::surfaceNormal(ground.latitude, ground.longitude)
+                                   : settings.sunDirection;
+    return ev100FromIlluminance(luminance(shading_->horizontalIlluminance(point, sun, atmosphere)));
 }
 
 Result<std::vector<VegetationStreamLayer>> SceneRenderer::vegetationLayers(

@@ -2,7 +2,20 @@
 
 #include <glad/gl.h>
 
+#include "AtmosphereLuts.h"
+#include "sylva/core/geo/Ellipsoid.h"
+
 namespace sylva::render {
+namespace {
+
+// ECEF -> the sphere space of the shaders (z scaled by a/b).
+glm::dvec3 toSphereSpace(const glm::dvec3& ecef) {
+    return {ecef.x, ecef.y, ecef.z * (Ellipsoid::kSemiMajorAxis / Ellipsoid::kSemiMinorAxis)};
+}
+
+}  // namespace
+
+ShadingPass::~ShadingPass() = default;
 
 Result<std::unique_ptr<ShadingPass>> ShadingPass::create(const ShaderLibrary& library) {
     std::unique_ptr<ShadingPass> pass(new ShadingPass());
@@ -13,16 +26,39 @@ Result<std::unique_ptr<ShadingPass>> ShadingPass::create(const ShaderLibrary& li
         return program.error();
     }
     pass->program_ = std::move(program.value());
+    Result<std::unique_ptr<AtmosphereLuts>> atmosphere = AtmosphereLuts::create(library);
+    if (!atmosphere) {
+        return atmosphere.error();
+    }
+    pass->atmosphere_ = std::move(atmosphere.value());
     pass->emptyVertexArray_ = createGlVertexArray();
     return pass;
 }
 
+glm::dvec3 ShadingPass::horizontalIlluminance(const glm::dvec3& pointEcef, const glm::dvec3& sun,
+                                              const AtmosphereParameters& parameters) {
+    atmosphere_->prepare(parameters);
+    const glm::dvec3 point = toSphereSpace(pointEcef);
+    const double radius = glm::length(point);
+    return atmosphere_->horizontalIlluminance(
+        radius, glm::dot(point / radius, glm::normalize(toSphereSpace(sun))));
+}
+
 void ShadingPass::run(const Framebuffer& gbuffer, const Framebuffer& target, const Camera& camera,
                       const glm::dmat4& projection, double near, const ShadingSettings& settings) {
+    const glm::dmat3 view = camera.viewRotation();
+    atmosphere_->prepare(settings.atmosphereParameters);
+    if (settings.atmosphere) {
+        AtmosphereView frame;
+        frame.cameraSphere = toSphereSpace(camera.position);
+        frame.viewToEcef = glm::transpose(view);
+        frame.projectionScale = {projection[0][0], projection[1][1]};
+        frame.sunSphere = glm::normalize(toSphereSpace(settings.sunDirection));
+        atmosphere_->updateView(frame);
+    }
     target.bind();
     glDisable(GL_DEPTH_TEST);
     program_.use();
-    const glm::dmat3 view = camera.viewRotation();
     program_.setInt("uAlbedo", 0);
     program_.setInt("uNormal", 1);
     program_.setInt("uDepth", 2);
@@ -40,6 +76,7 @@ void ShadingPass::run(const Framebuffer& gbuffer, const Framebuffer& target, con
     glBindTextureUnit(0, gbuffer.colorTexture(0));
     glBindTextureUnit(1, gbuffer.colorTexture(1));
     glBindTextureUnit(2, gbuffer.depthTexture());
+    atmosphere_->bind(program_, 3);
     glBindVertexArray(emptyVertexArray_.get());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);

@@ -3,7 +3,7 @@
 // ambient occlusion, normal, reversed-Z depth), lights terrain and plants by the sun and
 // sky, adds aerial perspective and the sky from the atmosphere model, tone maps and writes
 // sRGB (and, when the target has a second attachment, the exposed linear radiance).
-#include "atmosphere.glsl"
+#include "atmosphere_lookup.glsl"
 
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outColor;
@@ -20,7 +20,7 @@ uniform vec3 uCameraEcef;       // metres (float precision is plenty for the sky
 uniform vec3 uSunView;          // unit vector towards the sun, view space
 uniform vec3 uSunEcef;
 uniform bool uAtmosphere;
-uniform float uExposure;
+uniform float uExposure;  // 1 / (1.2 * 2^EV100) x the project's exposure scale
 
 vec3 linearToSrgb(vec3 c) {
     c = clamp(c, 0.0, 1.0);
@@ -45,12 +45,14 @@ void main() {
         float distance = (uNear / depth) / -directionView.z;
         vec3 surfaceEcef = uCameraEcef + directionEcef * distance;
         vec3 upView = normalize(transpose(uViewToEcef) * normalize(surfaceEcef));
+        vec3 surfaceSphere = toSphereSpace(surfaceEcef);
         float sunDiffuse = max(dot(normal, uSunView), 0.0);
-        vec3 sunLight = SUN_INTENSITY * (uAtmosphere ? extinction(opticalDepthToSun(toSphereSpace(surfaceEcef), sun))
-                                                     : vec3(1.0));
-        float daylight = clamp(dot(upView, uSunView) * 2.0 + 0.3, 0.0, 1.0);
+        // Sun and sky light from the atmosphere model (Hillaire 2020): the sun through the
+        // transmittance LUT, the sky from the irradiance LUT of a horizontal surface,
+        // tilted with the normal (isotropic sky: (1 + n.up) / 2).
+        vec3 sunLight = atmosphereSunIlluminance(surfaceSphere, sun);
         // albedo.a: ambient occlusion (1 for terrain; per primitive for plants, §6.5).
-        vec3 ambient = SUN_INTENSITY * vec3(0.05, 0.07, 0.11) * daylight * (0.6 + 0.4 * dot(normal, upView)) *
+        vec3 ambient = atmosphereSkyIrradiance(surfaceSphere, sun) * (0.5 + 0.5 * dot(normal, upView)) *
                        albedo.a;
         // Lambertian: radiance = albedo / pi * irradiance.
         vec3 surface = albedo.rgb / PI * (sunLight * sunDiffuse + ambient);
@@ -58,27 +60,17 @@ void main() {
             vec3 reflected = reflect(directionView, normal);
             float glint = pow(max(dot(reflected, uSunView), 0.0), 1500.0) * 6.0;
             float fresnel = 0.02 + 0.98 * pow(1.0 - max(dot(-directionView, normal), 0.0), 5.0);
-            surface += sunLight * glint * fresnel + ambient * 0.5 * fresnel;
+            surface += sunLight * glint * fresnel + ambient / PI * fresnel;
         }
         if (uAtmosphere) {
             vec3 inscattered, transmittance;
-            scatter(origin, direction, distance, sun, inscattered, transmittance);
+            atmosphereAerialPerspective(vUv, origin, direction, sun, distance, inscattered, transmittance);
             radiance = surface * transmittance + inscattered;
         } else {
             radiance = surface;
         }
     } else {
-        radiance = vec3(0.0);
-        if (uAtmosphere) {
-            vec3 inscattered, transmittance;
-            vec2 planet = raySphere(origin, direction, WGS84_A);
-            float far = (planet.x > 0.0 && planet.x < planet.y) ? planet.x : 1e12;
-            scatter(origin, direction, far, sun, inscattered, transmittance);
-            radiance = inscattered;
-            if (far == 1e12 && dot(directionView, uSunView) > 0.99996) {
-                radiance += SUN_INTENSITY * 5.0 * transmittance;  // the sun's disk
-            }
-        }
+        radiance = uAtmosphere ? atmosphereSky(origin, direction, sun) : vec3(0.0);
     }
     vec3 exposed = uExposure * radiance;
     outRadiance = vec4(exposed, 1.0);

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "GoldenImage.h"
@@ -21,6 +22,7 @@
 #include "sylva/core/terrain/ElevationQuery.h"
 #include "sylva/core/terrain/LevelVisibility.h"
 #include "sylva/dsl/ProjectLoader.h"
+#include "sylva/render/batch/RenderSetup.h"
 #include "sylva/render/gl/GlContext.h"
 #include "sylva/render/scene/SceneRenderer.h"
 
@@ -61,16 +63,12 @@ protected:
     }
 
     // Renders camera `name` of the demo with the demo's render settings.
-    static Image render(const std::string& name, Camera* cameraOut = nullptr) {
-        BlockReader block(model_->render, SchemaRegistry::builtin().find("render"));
-        RenderSettings settings;
-        settings.width = kWidth;
-        settings.height = kHeight;
-        const GeoPosition sun = *block.geo("sun");
-        settings.sunDirection = Ellipsoid::surfaceNormal(sun.latitude, sun.longitude);
-        settings.exposure = *block.optionalNumber("exposure");
-        settings.ocean = block.boolean("ocean", true);
-        settings.atmosphere = block.boolean("atmosphere", true);
+    // `adjust` may change the settings for the camera (sun, atmosphere) before rendering.
+    static Image render(const std::string& name, Camera* cameraOut = nullptr,
+                        const std::function<void(RenderSettings&, const Camera&)>& adjust = {}) {
+        Result<RenderSetup> setup = RenderSetup::fromModel(*model_, kWidth, kHeight);
+        EXPECT_TRUE(setup) << setup.error().message;
+        RenderSettings settings = setup.value().settings;
         const Block* cameraBlock = model_->findCamera(name);
         EXPECT_NE(cameraBlock, nullptr);
         const ElevationQuery query(*layers_.elevation, *evaluator_);
@@ -85,6 +83,9 @@ protected:
         if (cameraOut) {
             *cameraOut = camera.value();
         }
+        if (adjust) {
+            adjust(settings, camera.value());
+        }
         Result<Image> image = renderer_->render(layers_, *evaluator_, camera.value(), settings);
         EXPECT_TRUE(image) << image.error().message;
         return image ? image.value() : Image{};
@@ -93,6 +94,11 @@ protected:
     static void checkGolden(const std::string& name) {
         const Image image = render(name);
         golden::checkGolden(prefix_ + name, kWidth, kHeight, image.pixels);
+    }
+    static void checkGolden(const std::string& name, const std::string& golden,
+                            const std::function<void(RenderSettings&, const Camera&)>& adjust) {
+        const Image image = render(name, nullptr, adjust);
+        golden::checkGolden(prefix_ + golden, kWidth, kHeight, image.pixels);
     }
 
     // No holes: every pixel whose ray hits the ellipsoid (shrunk by 2 km, more than
@@ -178,6 +184,25 @@ TEST_F(DemoGolden, Space) {
 }
 TEST_F(DemoGolden, Aircraft) {
     checkGolden("aircraft");
+}
+// The aircraft view with 8 km visibility (a hazy day; the project's default is 40 km,
+// a clear day: DemoGolden.Aircraft).
+TEST_F(DemoGolden, AircraftHazy) {
+    checkGolden("aircraft", "aircraft_hazy", [](RenderSettings& settings, const Camera&) {
+        settings.atmosphereParameters = AtmosphereParameters::fromVisibility(8000.0).value();
+    });
+}
+// The aircraft view at dusk: the sun 3 degrees below the horizon straight ahead (metered
+// exposure: the twilight sky and the dim relief must stay visible).
+TEST_F(DemoGolden, AircraftDusk) {
+    checkGolden("aircraft", "aircraft_dusk", [](RenderSettings& settings, const Camera& camera) {
+        const glm::dvec3 up =
+            Ellipsoid::surfaceNormal(camera.geodetic.latitude, camera.geodetic.longitude);
+        const glm::dvec3 forward = camera.axes * glm::dvec3(0, 0, -1);
+        const glm::dvec3 ahead = glm::normalize(forward - up * glm::dot(forward, up));
+        const double elevation = -3.0 * 3.14159265358979 / 180.0;
+        settings.sunDirection = ahead * std::cos(elevation) + up * std::sin(elevation);
+    });
 }
 TEST_F(DemoGolden, Ground) {
     checkGolden("ground");

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -33,6 +34,13 @@ struct RenderSettings {
     glm::dvec3 sunDirection{1, 0, 0};  // ECEF unit vector towards the sun
     bool atmosphere = true;
     bool ocean = true;
+    AtmosphereParameters atmosphereParameters;  // render { visibility, haze_height }
+    // Exposure: luminance x exposureScale(EV100) x `exposure`. EV100 is `ev100` when set
+    // (a physical camera), else metered (incident light) at the ground point under the
+    // camera from the sun and sky of the atmosphere model; from space (above the
+    // atmosphere) for the sun at the zenith. One viewpoint, sun and atmosphere always
+    // give one EV100, whatever the scenario shows.
+    std::optional<double> ev100;
     double exposure = 1.0;
     // Batch rendering waits until every wanted terrain level's tiles are ready (the
     // image is then independent of thread timing); interactive use draws what is
@@ -62,6 +70,7 @@ struct Image {
 struct RenderStatistics {
     TerrainFrameStatistics terrain;
     double heightAboveTerrain = 0;     // metres
+    double ev100 = 0;                  // the camera exposure used (set or metered)
     double gpuSeconds = 0;             // draw + shade (every sample) + read-back
     double terrainPassSeconds = 0;     // the terrain's G-buffer passes alone (to glFinish)
     double vegetationPassSeconds = 0;  // selection, upload and the plants' G-buffer passes
@@ -111,6 +120,8 @@ private:
     void drawSample(const Camera& camera, const glm::dmat4& projection, const LevelRange& levels,
                     const std::vector<const InstanceBatch*>& batches,
                     const RenderSettings& settings);
+    // EV100 of an incident-light meter at the ground under the camera (see RenderSettings).
+    double meterEv100(const Camera& camera, double groundHeight, const RenderSettings& settings);
     // The stream layers of the scenario's plants sources; registers each species'
     // asset with the vegetation renderer on first use (building it may take seconds).
     Result<std::vector<VegetationStreamLayer>> vegetationLayers(const TerrainLayers& layers);
@@ -125,6 +136,7 @@ private:
     std::unique_ptr<VegetationRenderer> vegetation_;
     std::unique_ptr<MeshRenderer> meshes_;
     bool meshesStreamed_ = false;  // this image's scenario has mesh layers
+    double groundHeight_ = 0;      // metres: the ground under the camera (prepareTerrain)
     VegetationStream vegetationStream_;
     std::map<std::uint64_t, std::uint32_t> speciesOfModel_;  // model content hash -> species
     std::unique_ptr<ShadingPass> shading_;

@@ -1,13 +1,14 @@
-// ShadingPass: turns the G-buffer into the final image (seed 001 ch. 7, reduced to
-// what the foundation needs): sun and sky light on the terrain, water glint, sky and
-// limb glow from a single-scattering atmosphere, aerial perspective (haze), tone
-// mapping, sRGB output. The only code that lights anything.
+// ShadingPass: turns the G-buffer into the final image (seed 001 ch. 7): sun and sky
+// light on the terrain from the physical atmosphere (Hillaire 2020 LUTs, AtmosphereLuts),
+// water glint, sky, sun disc and limb, aerial perspective (haze) from the froxel volume,
+// exposure, tone mapping, sRGB output. The only code that lights anything.
 #pragma once
 
 #include <memory>
 
 #include <glm/glm.hpp>
 
+#include "sylva/core/atmosphere/AtmosphereParameters.h"
 #include "sylva/core/base/Result.h"
 #include "sylva/core/scene/Camera.h"
 #include "sylva/render/gl/Framebuffer.h"
@@ -19,12 +20,18 @@ namespace sylva::render {
 
 struct ShadingSettings {
     glm::dvec3 sunDirection{1, 0, 0};  // unit vector towards the sun, ECEF
-    bool atmosphere = true;
-    double exposure = 1.0;
+    bool atmosphere = true;  // sky, limb and aerial perspective (the light always uses it)
+    AtmosphereParameters atmosphereParameters;
+    // Scale from luminance (cd/m^2) to the tone mapper's input: exposureScale(EV100) x
+    // the project's exposure factor (SceneRenderer meters EV100).
+    double exposure = 1.0 / 40000.0;
 };
+
+class AtmosphereLuts;
 
 class ShadingPass {
 public:
+    ~ShadingPass();
     static Result<std::unique_ptr<ShadingPass>> create(const ShaderLibrary& library);
 
     // Reads `gbuffer` (attachments 0 albedo, 1 normal, reversed-Z depth) and writes
@@ -34,10 +41,17 @@ public:
     void run(const Framebuffer& gbuffer, const Framebuffer& target, const Camera& camera,
              const glm::dmat4& projection, double near, const ShadingSettings& settings);
 
+    // Illuminance (lux, linear RGB) of a horizontal surface at `pointEcef` (metres) from
+    // the sun (unit ECEF vector) and the sky of `parameters`: what an incident-light meter
+    // there reads. Computes the atmosphere's tables first if needed.
+    glm::dvec3 horizontalIlluminance(const glm::dvec3& pointEcef, const glm::dvec3& sun,
+                                     const AtmosphereParameters& parameters);
+
 private:
     ShadingPass() = default;
     ShaderProgram program_;
     GlVertexArray emptyVertexArray_;  // full-screen triangle: no attributes
+    std::unique_ptr<AtmosphereLuts> atmosphere_;
 };
 
 }  // namespace sylva::render

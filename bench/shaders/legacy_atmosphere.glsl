@@ -1,3 +1,6 @@
+// The single-scattering shading pass as it was before the LUT atmosphere (issue 16), kept
+// only so `sylva bench shading` can time the old ray march against the LUTs
+// (bench/AtmosphereBenchmark.cpp). Not used for images.
 // Single-scattering atmosphere (Rayleigh + Mie, exponential density profiles) after
 // Nishita et al. 1993, as seed 001 ch. 7 builds on: in-scattered light and
 // transmittance along a view ray, ray-marched. The ellipsoid is made a sphere of

@@ -1,0 +1,88 @@
+#version 450 core
+// The shading pass before the LUT atmosphere (issue 16), kept only for `sylva bench
+// shading` (atmosphere_speedup). Not used for images.
+// The shading pass: the only place light is computed. Reads the G-buffer (albedo and
+// ambient occlusion, normal, reversed-Z depth), lights terrain and plants by the sun and
+// sky, adds aerial perspective and the sky from the atmosphere model, tone maps and writes
+// sRGB (and, when the target has a second attachment, the exposed linear radiance).
+#include "legacy_atmosphere.glsl"
+
+layout(location = 0) in vec2 vUv;
+layout(location = 0) out vec4 outColor;
+layout(location = 1) out vec4 outRadiance;  // linear, after exposure (EXR output)
+
+uniform sampler2D uAlbedo;
+uniform sampler2D uNormal;
+uniform sampler2D uDepth;
+uniform vec2 uProjectionScale;  // projection[0][0], projection[1][1]
+uniform float uNear;            // metres
+uniform mat3 uViewToEcef;
+uniform vec3 uCameraEcef;       // metres (float precision is plenty for the sky)
+uniform vec3 uSunView;          // unit vector towards the sun, view space
+uniform vec3 uSunEcef;
+uniform bool uAtmosphere;
+uniform float uExposure;
+
+vec3 linearToSrgb(vec3 c) {
+    c = clamp(c, 0.0, 1.0);
+    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    float depth = texelFetch(uDepth, pixel, 0).r;
+    vec2 ndc = vUv * 2.0 - 1.0;
+    vec3 directionView = normalize(vec3(ndc / uProjectionScale, -1.0));
+    vec3 directionEcef = normalize(uViewToEcef * directionView);
+    vec3 origin = toSphereSpace(uCameraEcef);
+    vec3 direction = normalize(toSphereSpace(directionEcef));
+    vec3 sun = normalize(toSphereSpace(uSunEcef));
+
+    vec3 radiance;
+    if (depth > 0.0) {
+        vec4 albedo = texelFetch(uAlbedo, pixel, 0);
+        vec4 normalMaterial = texelFetch(uNormal, pixel, 0);
+        vec3 normal = normalize(normalMaterial.xyz);
+        float distance = (uNear / depth) / -directionView.z;
+        vec3 surfaceEcef = uCameraEcef + directionEcef * distance;
+        vec3 upView = normalize(transpose(uViewToEcef) * normalize(surfaceEcef));
+        float sunDiffuse = max(dot(normal, uSunView), 0.0);
+        vec3 sunLight = SUN_INTENSITY * (uAtmosphere ? extinction(opticalDepthToSun(toSphereSpace(surfaceEcef), sun))
+                                                     : vec3(1.0));
+        float daylight = clamp(dot(upView, uSunView) * 2.0 + 0.3, 0.0, 1.0);
+        // albedo.a: ambient occlusion (1 for terrain; per primitive for plants, §6.5).
+        vec3 ambient = SUN_INTENSITY * vec3(0.05, 0.07, 0.11) * daylight * (0.6 + 0.4 * dot(normal, upView)) *
+                       albedo.a;
+        // Lambertian: radiance = albedo / pi * irradiance.
+        vec3 surface = albedo.rgb / PI * (sunLight * sunDiffuse + ambient);
+        if (normalMaterial.w > 0.5) {  // water: sun glint and a little sky reflection
+            vec3 reflected = reflect(directionView, normal);
+            float glint = pow(max(dot(reflected, uSunView), 0.0), 1500.0) * 6.0;
+            float fresnel = 0.02 + 0.98 * pow(1.0 - max(dot(-directionView, normal), 0.0), 5.0);
+            surface += sunLight * glint * fresnel + ambient * 0.5 * fresnel;
+        }
+        if (uAtmosphere) {
+            vec3 inscattered, transmittance;
+            scatter(origin, direction, distance, sun, inscattered, transmittance);
+            radiance = surface * transmittance + inscattered;
+        } else {
+            radiance = surface;
+        }
+    } else {
+        radiance = vec3(0.0);
+        if (uAtmosphere) {
+            vec3 inscattered, transmittance;
+            vec2 planet = raySphere(origin, direction, WGS84_A);
+            float far = (planet.x > 0.0 && planet.x < planet.y) ? planet.x : 1e12;
+            scatter(origin, direction, far, sun, inscattered, transmittance);
+            radiance = inscattered;
+            if (far == 1e12 && dot(directionView, uSunView) > 0.99996) {
+                radiance += SUN_INTENSITY * 5.0 * transmittance;  // the sun's disk
+            }
+        }
+    }
+    vec3 exposed = uExposure * radiance;
+    outRadiance = vec4(exposed, 1.0);
+    vec3 mapped = 1.0 - exp(-exposed);
+    outColor = vec4(linearToSrgb(mapped), 1.0);
+}
