@@ -75,7 +75,7 @@ struct CommandSuite {
 const CommandSuite kCommandSuites[] = {
     {"terrain", runTerrainBench},       {"tiles", runTilesBench},
     {"plantlod", runPlantLodBench},     {"turnaround", runTurnaroundBench},
-    {"vegetation", runVegetationBench},
+    {"vegetation", runVegetationBench}, {"shading", runShadingBench},
 };
 
 // Every suite's name, in the order `sylva bench --help` lists them.

@@ -12,13 +12,12 @@
 #include "BenchShaders.h"
 #include "GridElevationSource.h"
 #include "GridMesh.h"
+#include "TerrainFlight.h"
 #include "sylva/bench/BenchmarkMetrics.h"
-#include "sylva/core/base/WorkerPool.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/scheduler/Scheduler.h"
 #include "sylva/core/sources/raster/HypsometricSource.h"
-#include "sylva/core/sources/raster/NoiseSource.h"
 #include "sylva/core/sources/raster/NormalMapSource.h"
 #include "sylva/render/gl/Framebuffer.h"
 #include "sylva/render/scene/SceneRenderer.h"
@@ -33,106 +32,12 @@ using render::Image;
 
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180.0;
-constexpr double kCentreLatitude = 46.0 * kDegree;
-constexpr double kCentreLongitude = 8.0 * kDegree;
-// Altitudes above the ground of seed 001 Table 4.1, metres.
-constexpr double kAltitudes[] = {800e3, 100e3, 10e3, 1e3, 50.0};
-
 double median(std::vector<double> values) {
     if (values.empty()) {
         return 0.0;
     }
     std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
     return values[values.size() / 2];
-}
-
-ElevationGrid makeDem(int samples, double degrees) {
-    NoiseParameters parameters;  // the demo project's relief
-    parameters.seed = 7;
-    parameters.amplitude = 3000;
-    parameters.baseWavelength = 3.0e6;
-    parameters.ridges = 0.6;
-    parameters.ridgeWavelength = 3.0e5;
-    parameters.roughness = 0.7;
-    const NoiseSource noise("dem", parameters);
-    ElevationGrid grid;
-    grid.width = grid.height = samples;
-    grid.west = kCentreLongitude - degrees / 2 * kDegree;
-    grid.east = kCentreLongitude + degrees / 2 * kDegree;
-    grid.south = kCentreLatitude - degrees / 2 * kDegree;
-    grid.north = kCentreLatitude + degrees / 2 * kDegree;
-    grid.heights.resize(std::size_t(samples) * samples);
-    const double footprint = grid.sampleSpacingLatitude() * Ellipsoid::kMeanRadius;
-    WorkerPool::shared().run(samples, [&](int row) {
-        const double latitude = grid.north - row * grid.sampleSpacingLatitude();
-        for (int column = 0; column < samples; ++column) {
-            const double longitude = grid.west + column * grid.sampleSpacingLongitude();
-            const glm::dvec3 direction = Ellipsoid::surfaceNormal(latitude, longitude);
-            grid.heights[std::size_t(row) * samples + column] =
-                float(noise.height(direction, footprint));
-        }
-    });
-    return grid;
-}
-
-// The same surface with `factor` times the samples per side (bilinear), i.e. a DEM
-// with factor^2 the data.
-ElevationGrid upsample(const ElevationGrid& grid, int factor) {
-    ElevationGrid fine = grid;
-    fine.width = (grid.width - 1) * factor + 1;
-    fine.height = (grid.height - 1) * factor + 1;
-    fine.heights.assign(std::size_t(fine.width) * fine.height, 0.0f);
-    WorkerPool::shared().run(fine.height, [&](int row) {
-        const double latitude = fine.north - row * fine.sampleSpacingLatitude();
-        for (int column = 0; column < fine.width; ++column) {
-            fine.heights[std::size_t(row) * fine.width + column] =
-                float(grid.at(latitude, fine.west + column * fine.sampleSpacingLongitude(), 0.0));
-        }
-    });
-    return fine;
-}
-
-struct FlightFrame {
-    Camera camera;
-    double altitude;
-};
-
-std::vector<FlightFrame> flight(const ElevationGrid& grid, int framesPerSegment) {
-    std::vector<FlightFrame> frames;
-    const int segments = int(std::size(kAltitudes)) - 1;
-    const int total = segments * framesPerSegment + 1;
-    for (int frame = 0; frame < total; ++frame) {
-        const double progress = double(frame) / (total - 1);
-        const int segment = std::min(frame / framesPerSegment, segments - 1);
-        const double local = double(frame - segment * framesPerSegment) / framesPerSegment;
-        const double altitude = std::exp(std::log(kAltitudes[segment]) * (1 - local) +
-                                         std::log(kAltitudes[segment + 1]) * local);
-        // Approach the DEM centre from the south while descending; look down from
-        // space, towards the horizon near the ground.
-        const double latitude = kCentreLatitude - 0.6 * kDegree * (1 - progress);
-        const double longitude = kCentreLongitude + 0.2 * kDegree * (1 - progress);
-        const double pitch = (-85.0 + 75.0 * std::pow(progress, 0.7)) * kDegree;
-        Camera camera;
-        camera.geodetic = {latitude, longitude, grid.at(latitude, longitude, 0.0) + altitude};
-        camera.position = Ellipsoid::toEcef(camera.geodetic);
-        camera.axes = Camera::axesFromAngles(camera.geodetic, 10 * kDegree, pitch, 0.0);
-        camera.verticalFov = 60 * kDegree;
-        frames.push_back({camera, altitude});
-    }
-    return frames;
-}
-
-// The frame settings of both flights: the demo project's sun and exposure, no ocean.
-RenderSettings flightSettings(const TerrainBenchmarkOptions& options) {
-    RenderSettings settings;
-    settings.width = options.width;
-    settings.height = options.height;
-    settings.ocean = false;
-    settings.sunDirection = Ellipsoid::surfaceNormal(5 * kDegree, -40 * kDegree);
-    settings.exposure = 0.45;  // as the demo project
-    settings.waitForTiles = options.waitForTiles;
-    return settings;
 }
 
 // What the clipmap flights measure (per frame of the first flight, unless noted).
@@ -223,7 +128,7 @@ Result<BruteForceFlight> flyBruteForce(const ShaderLibrary& library, const Eleva
     using Clock = std::chrono::steady_clock;
     Result<GridMesh> mesh =
         GridMesh::create(withBenchShaders(library), grid,
-                         Ellipsoid::toEcef({kCentreLatitude, kCentreLongitude, 0.0}));
+                         Ellipsoid::toEcef({kFlightCentreLatitude, kFlightCentreLongitude, 0.0}));
     if (!mesh) {
         return mesh.error();
     }
@@ -317,14 +222,15 @@ std::string TerrainBenchmarkResult::json() const {
 
 Result<TerrainBenchmarkResult> runTerrainBenchmark(const ShaderLibrary& library,
                                                    const TerrainBenchmarkOptions& options) {
-    const ElevationGrid grid = makeDem(options.demSamples, options.demDegrees);
-    const std::vector<FlightFrame> frames = flight(grid, options.framesPerSegment);
+    const ElevationGrid grid = makeFlightDem(options.demSamples, options.demDegrees);
+    const std::vector<FlightFrame> frames = flightFrames(grid, options.framesPerSegment);
     Result<std::unique_ptr<SceneRenderer>> created =
         SceneRenderer::create(library, TerrainSettings{});
     if (!created) {
         return created.error();
     }
-    const RenderSettings settings = flightSettings(options);
+    const RenderSettings settings =
+        flightSettings(options.width, options.height, options.waitForTiles);
     // The clipmap flight, twice: over the DEM, and over 16x its samples.
     ClipmapFlight clipmap;
     for (int pass = 0; pass < 2; ++pass) {

@@ -31,6 +31,11 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const ShaderLibrary
         return shading.error();
     }
     renderer->shading_ = std::move(shading.value());
+    Result<std::unique_ptr<ShadowMaps>> shadowMaps = ShadowMaps::create();
+    if (!shadowMaps) {
+        return shadowMaps.error();
+    }
+    renderer->shadowMaps_ = std::move(shadowMaps.value());
     return renderer;
 }
 
@@ -169,7 +174,24 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
             std::chrono::duration<double>(std::chrono::steady_clock::now() - vegetationStart)
                 .count();
     }
+    const auto shadowStart = std::chrono::steady_clock::now();
+    std::vector<ShadowCaster*> casters{terrain_.get()};
+    if (!batches.empty()) {
+        casters.push_back(vegetation_.get());  // the batches drawn above
+    }
+    casters.insert(casters.end(), settings.shadowCasters.begin(), settings.shadowCasters.end());
+    if (Status shadows = shadowMaps_->render(camera, double(settings.width) / settings.height,
+                                             settings.sunDirection, settings.shadows, casters);
+        !shadows) {
+        Framebuffer::unbind();
+        glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+        return shadows.error();
+    }
+    glFinish();  // only to time the pass
+    statistics_.shadowPassSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - shadowStart).count();
     ShadingSettings shading;
+    shading.shadowMaps = shadowMaps_.get();
     shading.sunDirection = settings.sunDirection;
     shading.atmosphere = settings.atmosphere;
     shading.exposure = settings.exposure;

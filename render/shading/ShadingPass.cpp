@@ -38,9 +38,35 @@ void ShadingPass::run(const Framebuffer& gbuffer, const Framebuffer& target, con
     glBindTextureUnit(0, gbuffer.colorTexture(0));
     glBindTextureUnit(1, gbuffer.colorTexture(1));
     glBindTextureUnit(2, gbuffer.depthTexture());
+    setShadowUniforms(settings.shadowMaps);
     glBindVertexArray(emptyVertexArray_.get());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
+}
+
+void ShadingPass::setShadowUniforms(const ShadowMaps* shadowMaps) {
+    const int count = shadowMaps != nullptr ? int(shadowMaps->cascades().size()) : 0;
+    program_.setInt("uShadowMap", 3);
+    program_.setInt("uShadowCascadeCount", count);
+    if (count == 0) {
+        return;  // shadows.glsl never samples the map then
+    }
+    const std::vector<glm::mat4> matrices = shadowMaps->shadowMatrices();
+    std::vector<float> texels, biases;
+    for (const ShadowCascade& cascade : shadowMaps->cascades()) {
+        texels.push_back(float(cascade.texelSize));
+        // One texel in depth units: the depth range is three radii (ShadowCascades).
+        biases.push_back(float(cascade.texelSize / (3.0 * cascade.radius)));
+    }
+    glProgramUniformMatrix4fv(program_.id(), program_.uniformLocation("uShadowMatrices[0]"), count,
+                              GL_FALSE, &matrices[0][0][0]);
+    glProgramUniform1fv(program_.id(), program_.uniformLocation("uShadowTexelSizes[0]"), count,
+                        texels.data());
+    glProgramUniform1fv(program_.id(), program_.uniformLocation("uShadowDepthBias[0]"), count,
+                        biases.data());
+    program_.setFloat("uShadowResolution", float(shadowMaps->resolution()));
+    program_.setMat3("uShadowLightRotation", glm::mat3(shadowMaps->lightRotation()));
+    glBindTextureUnit(3, shadowMaps->texture());
 }
 
 }  // namespace sylva::render

@@ -4,6 +4,7 @@
 // sky, adds aerial perspective and the sky from the atmosphere model, tone maps and writes
 // sRGB (and, when the target has a second attachment, the exposed linear radiance).
 #include "atmosphere.glsl"
+#include "shadows.glsl"
 
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outColor;
@@ -45,7 +46,8 @@ void main() {
         vec3 surfaceEcef = uCameraEcef + directionEcef * distance;
         vec3 upView = normalize(transpose(uViewToEcef) * normalize(surfaceEcef));
         float sunDiffuse = max(dot(normal, uSunView), 0.0);
-        vec3 sunLight = SUN_INTENSITY * (uAtmosphere ? extinction(opticalDepthToSun(toSphereSpace(surfaceEcef), sun))
+        float shadow = sunVisibility(directionEcef * distance, normalize(uViewToEcef * normal));
+        vec3 sunLight = shadow * SUN_INTENSITY * (uAtmosphere ? extinction(opticalDepthToSun(toSphereSpace(surfaceEcef), sun))
                                                      : vec3(1.0));
         float daylight = clamp(dot(upView, uSunView) * 2.0 + 0.3, 0.0, 1.0);
         // albedo.a: ambient occlusion (1 for terrain; per primitive for plants, §6.5).

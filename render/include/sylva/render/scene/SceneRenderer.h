@@ -20,6 +20,7 @@
 #include "sylva/core/vegetation/VegetationStream.h"
 #include "sylva/render/gl/Framebuffer.h"
 #include "sylva/render/shading/ShadingPass.h"
+#include "sylva/render/shadows/ShadowMaps.h"
 #include "sylva/render/terrain/TerrainRenderer.h"
 #include "sylva/render/vegetation/VegetationRenderer.h"
 
@@ -39,6 +40,11 @@ struct RenderSettings {
     // Also read back the linear radiance (Image::radiance), e.g. for EXR output.
     bool linearOutput = false;
     VegetationSettings vegetation;
+    // Sun shadows (cascaded shadow maps, seed 001 §7.1): the terrain always casts; more
+    // casters (not owned; e.g. the mesh/building renderer of issue 17, test objects) are
+    // drawn into every cascade but the terrain-only one after the SceneRenderer's own.
+    ShadowSettings shadows;
+    std::vector<ShadowCaster*> shadowCasters;
     // Plants handed in directly (tests, benchmarks), drawn with the species of
     // vegetation(); the `plants` layers of the scenario are streamed besides.
     std::vector<const InstanceBatch*> instanceBatches;
@@ -59,6 +65,7 @@ struct RenderStatistics {
     double gpuSeconds = 0;             // draw + shade + read-back
     double terrainPassSeconds = 0;     // the terrain's G-buffer pass alone (to glFinish)
     double vegetationPassSeconds = 0;  // selection, upload and the plants' G-buffer pass
+    double shadowPassSeconds = 0;      // all cascades of the shadow maps (to glFinish)
     VegetationStatistics vegetation;
     VegetationStreamStatistics vegetationStream;
 };
@@ -83,6 +90,8 @@ public:
     double near() const { return near_; }
     TerrainRenderer& terrain() { return *terrain_; }
     VegetationRenderer& vegetation() { return *vegetation_; }
+    // The shadow maps of the last render (no cascades when shadows were off).
+    const ShadowMaps& shadowMaps() const { return *shadowMaps_; }
 
 private:
     SceneRenderer() = default;
@@ -96,6 +105,7 @@ private:
     VegetationStream vegetationStream_;
     std::map<std::uint64_t, std::uint32_t> speciesOfModel_;  // model content hash -> species
     std::unique_ptr<ShadingPass> shading_;
+    std::unique_ptr<ShadowMaps> shadowMaps_;
     Framebuffer gbuffer_;
     Framebuffer output_;
     RenderStatistics statistics_;

@@ -14,6 +14,7 @@
 #include "sylva/render/gl/GlHandle.h"
 #include "sylva/render/gl/ShaderLibrary.h"
 #include "sylva/render/gl/ShaderProgram.h"
+#include "sylva/render/shadows/ShadowMaps.h"
 
 namespace sylva::render {
 
@@ -21,6 +22,9 @@ struct ShadingSettings {
     glm::dvec3 sunDirection{1, 0, 0};  // unit vector towards the sun, ECEF
     bool atmosphere = true;
     double exposure = 1.0;
+    // The sun's cascaded shadow maps drawn for this camera (not owned; null or no
+    // cascades: no shadows). Looked up by shaders/shading/shadows.glsl.
+    const ShadowMaps* shadowMaps = nullptr;
 };
 
 class ShadingPass {
@@ -36,6 +40,7 @@ public:
 
 private:
     ShadingPass() = default;
+    void setShadowUniforms(const ShadowMaps* shadowMaps);
     ShaderProgram program_;
     GlVertexArray emptyVertexArray_;  // full-screen triangle: no attributes
 };
