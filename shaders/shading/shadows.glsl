@@ -8,10 +8,11 @@
 // (receiver-plane depth bias: the plane's depth gradient in light space comes from the
 // normal, ∂depth/∂x = n_x / n_z per metre), so a grazing sun, whose texels each span many
 // metres of depth on the ground, needs no large constant bias. What remains is a small bias
-// for curvature and for the shadow pass drawing coarser terrain (1 + tan(θ) / 4 texels of
-// depth, θ between normal and sun, tan θ at most 12) and a normal offset of half a texel
-// × sin θ. A depth bias does not move a shadow's outline (the caster's edge lies far from
-// the receiver in depth); the normal offset moves it by at most half a texel.
+// for curvature and for the shadow pass drawing coarser terrain: 0.5 + tan(θ) / 10 texels
+// of depth (θ between normal and sun, tan θ at most 12). No normal offset: lifting the
+// receiver moves a shadow's outline by the lift / tan(elevation) (a pole's shadow grew
+// 2 % shorter with a three-texel offset), while a depth bias does not move it (the
+// caster's edge lies far from the receiver in depth).
 //
 // Filtering: a 3 × 3-texel box of bilinear percentage-closer lookups, done as 4 × 4 single
 // texel comparisons with the box's weights (each texel against its own plane depth), so
@@ -68,9 +69,8 @@ float sunVisibility(vec3 position, vec3 normalEcef) {
     float sine = sqrt(1.0 - cosine * cosine);
     vec2 slope = normalLight.xy / cosine;  // receiver plane: metres of depth per metre
     for (int cascade = 0; cascade < uShadowCascadeCount; ++cascade) {
-        vec3 moved = position + normalEcef * (0.0 * uShadowTexelSizes[cascade] * sine);
         vec3 coordinate;
-        if (shadowCoordinate(moved, cascade, 3.0, coordinate)) {
+        if (shadowCoordinate(position, cascade, 3.0, coordinate)) {
             float texelDepth = uShadowDepthBias[cascade];  // one texel of metres, depth units
             return shadowFiltered(coordinate, cascade, slope * texelDepth,
                                   texelDepth * (0.5 + 0.1 * (sine / cosine)));

@@ -388,10 +388,10 @@ TEST(DiagnosticGolden, ShadowDistanceOutOfRangeInScenarioOverride) {
 scenario a { layers = [@h]; override render { shadow_distance = 5m } }
 )SYLVA"),
               R"SYLVA(error[E0404]: value out of range for 'shadow_distance'
- --> test.sylva:2:64
+ --> test.sylva:2:65
   |
 2 | scenario a { layers = [@h]; override render { shadow_distance = 5m } }
-  |                                                                ^^ 5m is below the minimum 20m
+  |                                                                 ^^ 5m is below the minimum 20m
 )SYLVA");
 }
 

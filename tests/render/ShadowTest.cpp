@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <numbers>
 #include <string>
@@ -337,11 +336,14 @@ TEST_F(ShadowTest, OneCentimetreMoveDoesNotShimmer) {
 }
 
 // Terrain shadows of a real DEM (Olinda, 90 m, scripts/fetch-samples) seen from 4 km
-// straight above at a low sun (8°), against a CPU ray march of the same heightfield
-// (as the clipmap draws it: each point from the ring level that covers it) from each pixel's ground
-// point towards the sun. A pixel is shadowed in the render where the shadows take more than half of
-// its radiance (with / without shadows < 0.5). Pixels whose own slope faces away from the sun (N·L
-// < 0.05 from the DEM's gradient) are left out: no shadow map changes them.
+// straight above at a low sun (5°), against a CPU ray march of the same heightfield as
+// the clipmap draws it (each point from the ring level that covers it) from each pixel's
+// ground point towards the sun: at least 98 % of the ground pixels agree. A pixel is
+// shadowed in the render where the shadows take more than half of its radiance (with /
+// without < 0.5). Left out: pixels whose own slope faces away from the sun (N·L < 0.05
+// from the DEM's gradient; no shadow map changes them) and rays that graze the
+// heightfield within 2 m (what the drawn levels of detail cannot decide); the counts are
+// printed. The agreement image goes to build/test-output/shadows_olinda_agreement.png.
 TEST_F(ShadowTest, OlindaTerrainShadowsAgreeWithCpuRayMarch) {
     const std::filesystem::path path =
         std::filesystem::path(SYLVA_TEST_DATA_DIR) / "../data/olinda/olinda_dem_utm25s.tif";
@@ -367,62 +369,13 @@ TEST_F(ShadowTest, OlindaTerrainShadowsAgreeWithCpuRayMarch) {
     settings.ocean = false;
     settings.linearOutput = true;
     settings.shadows.distance = 6000.0;  // the ground lies 4 km away: in the split cascades
-    const glm::dvec3 sun =
-        sunAt(camera.geodetic,
-              (std::getenv("SHADOW_SUN") ? std::atof(std::getenv("SHADOW_SUN")) : 5.0) * kDegree,
-              290 * kDegree);
+    const glm::dvec3 sun = sunAt(camera.geodetic, 5.0 * kDegree, 290 * kDegree);
     settings.sunDirection = sun;
     Result<Image> shadowed =
         renderer_->render({dem.get(), nullptr, &normals, {}}, evaluator, camera, settings);
     ASSERT_TRUE(shadowed) << shadowed.error().message;
     const std::vector<float> depth = renderer_->depth();
     const double near = renderer_->near();
-    if (std::getenv("SHADOW_DEBUG")) {  // DEBUG: dump every cascade
-        const ShadowMaps& maps = renderer_->shadowMaps();
-        const int n = maps.resolution();
-        for (std::size_t c = 0; c < maps.cascades().size(); ++c) {
-            std::vector<float> texels(std::size_t(n) * n);
-            glGetTextureSubImage(maps.texture(), 0, 0, 0, GLint(c), n, n, 1, GL_DEPTH_COMPONENT,
-                                 GL_FLOAT, GLsizei(texels.size() * 4), texels.data());
-            float lo = 1e9f, hi = -1e9f;
-            for (float v : texels) {
-                lo = std::min(lo, v);
-                hi = std::max(hi, v);
-            }
-            std::printf("cascade %zu: near %.1f far %.1f r %.1f texel %.3f depth %g..%g\n", c,
-                        maps.cascades()[c].nearDistance, maps.cascades()[c].farDistance,
-                        maps.cascades()[c].radius, maps.cascades()[c].texelSize, lo, hi);
-            std::vector<std::uint8_t> image(std::size_t(n) * n * 4, 255);
-            for (std::size_t i = 0; i < texels.size(); ++i) {
-                const auto v = std::uint8_t(
-                    std::clamp((texels[i] - lo) / std::max(hi - lo, 1e-9f) * 255.0f, 0.0f, 255.0f));
-                image[i * 4] = image[i * 4 + 1] = image[i * 4 + 2] = v;
-            }
-            (void)ImageWriter::writeRgba8(std::filesystem::path(SYLVA_TEST_OUTPUT_DIR) /
-                                              ("cascade" + std::to_string(c) + ".png"),
-                                          n, n, image);
-            for (int py : {10, 67, 120}) {
-                for (int px : {10, 120, 230}) {
-                    const std::size_t index = std::size_t(py) * settings.width + px;
-                    const double f0 = 1.0 / std::tan(camera.verticalFov / 2);
-                    const glm::dvec3 view(((px + 0.5) / settings.width * 2 - 1) *
-                                              (double(settings.width) / settings.height) / f0,
-                                          (1 - (py + 0.5) / settings.height * 2) / f0, -1.0);
-                    const glm::dvec3 relative = camera.axes * view * (near / double(depth[index]));
-                    const glm::dvec4 clip = maps.cascades()[c].projection *
-                                            glm::dvec4(maps.lightRotation() * relative, 1.0);
-                    const int tx = int((clip.x * 0.5 + 0.5) * n),
-                              ty = int((clip.y * 0.5 + 0.5) * n);
-                    if (tx < 0 || ty < 0 || tx >= n || ty >= n)
-                        continue;
-                    std::printf("  pixel %d,%d: receiver depth %.7f map %.7f (diff %.2f m)\n", px,
-                                py, clip.z, texels[std::size_t(ty) * n + tx],
-                                (texels[std::size_t(ty) * n + tx] - clip.z) * 3 *
-                                    maps.cascades()[c].radius);
-                }
-            }
-        }
-    }
     settings.shadows.enabled = false;
     Result<Image> lit =
         renderer_->render({dem.get(), nullptr, &normals, {}}, evaluator, camera, settings);
@@ -494,12 +447,6 @@ TEST_F(ShadowTest, OlindaTerrainShadowsAgreeWithCpuRayMarch) {
             const float withShadows = shadowed.value().radiance[index * 4 + 1];
             const float withoutShadows = lit.value().radiance[index * 4 + 1];
             const bool rendered = withShadows < 0.5f * withoutShadows;
-            if (std::getenv("SHADOW_DEBUG")) {
-                comparison[index * 4] = comparison[index * 4 + 1] = comparison[index * 4 + 2] =
-                    std::uint8_t(std::clamp(withShadows / withoutShadows * 255.0f, 0.0f, 255.0f));
-                ++counted;
-                continue;
-            }
             // Comparison image: red = only rendered, blue = only the ray march, grey = both.
             std::uint8_t* pixel = &comparison[index * 4];
             pixel[0] = rendered ? (blocked ? 128 : 255) : 0;
