@@ -26,6 +26,7 @@ int runShadingBench(const std::vector<std::string>& arguments);
 int runObjectsBench(const std::vector<std::string>& arguments);
 int runTilesBench(const std::vector<std::string>& arguments);
 int runVegetationBench(const std::vector<std::string>& arguments);
+int runShadingBench(const std::vector<std::string>& arguments);
 int runPlant(const std::vector<std::string>& arguments);
 int runPlantBuild(const std::vector<std::string>& arguments);
 int runPlantInfo(const std::vector<std::string>& arguments);

@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "BenchForest.h"
 #include "sylva/bench/BenchmarkMetrics.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/image/ImageWriter.h"
@@ -33,10 +34,6 @@ using render::Image;
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180;
-constexpr double kGround = 120.0;  // metres: the flat terrain
-constexpr double kLatitude = 46.5 * kDegree, kLongitude = 7.5 * kDegree;
-constexpr double kMetresPerRadian = 6367000.0;
-
 double median(std::vector<double> values) {
     if (values.empty()) {
         return 0.0;
@@ -116,92 +113,6 @@ double frameError(const std::vector<float>& a, const std::vector<float>& b, int 
 
 // One key of the path: offsets north/east of the forest centre (metres), height above
 // the ground, heading and pitch (radians).
-struct PathKey {
-    double north, east, height, heading, pitch;
-};
-
-Camera cameraAt(const std::vector<PathKey>& keys, double t) {
-    const double clamped = std::clamp(t, 0.0, double(keys.size() - 1));
-    const std::size_t i = std::min(std::size_t(clamped), keys.size() - 2);
-    const double u = clamped - double(i);
-    const PathKey& a = keys[i];
-    const PathKey& b = keys[i + 1];
-    const auto mix = [u](double x, double y) { return x + (y - x) * u; };
-    Camera c;
-    c.geodetic.latitude = kLatitude + mix(a.north, b.north) / kMetresPerRadian;
-    c.geodetic.longitude =
-        kLongitude + mix(a.east, b.east) / (kMetresPerRadian * std::cos(kLatitude));
-    c.geodetic.height = kGround + mix(a.height, b.height);
-    c.position = Ellipsoid::toEcef(c.geodetic);
-    c.axes =
-        Camera::axesFromAngles(c.geodetic, mix(a.heading, b.heading), mix(a.pitch, b.pitch), 0.0);
-    c.verticalFov = 50.0 * kDegree;
-    return c;
-}
-
-// Forest groups of about 1,000 trees each (jittered 7 m grid in a disc of ~125 m radius),
-// group centres on a jittered grid `spacing` metres apart around the origin.
-std::vector<InstanceBatch> makeForest(int trees, std::uint32_t species,
-                                      const std::vector<SpeciesLod>& lods, std::uint32_t seed) {
-    std::mt19937 random(seed);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    const int groups = std::max(1, (trees + 999) / 1000);
-    const int side = int(std::ceil(std::sqrt(double(groups))));
-    const double spacing = 400.0;
-    // Grid cells nearest to the origin first: the first group sits at the centre.
-    std::vector<glm::ivec2> cellsByDistance;
-    for (int i = 0; i < side * side; ++i) {
-        cellsByDistance.emplace_back(i % side - side / 2, i / side - side / 2);
-    }
-    std::stable_sort(
-        cellsByDistance.begin(), cellsByDistance.end(),
-        [](glm::ivec2 a, glm::ivec2 b) { return a.x * a.x + a.y * a.y < b.x * b.x + b.y * b.y; });
-    std::vector<InstanceBatch> batches;
-    int remaining = trees;
-    for (int g = 0; g < groups; ++g) {
-        const double jitter = g == 0 ? 0.0 : 1.0;
-        const double gx = cellsByDistance[g].x * spacing + (unit(random) - 0.5) * 80.0 * jitter;
-        const double gy = cellsByDistance[g].y * spacing + (unit(random) - 0.5) * 80.0 * jitter;
-        const int count = std::min(remaining, 1000);
-        remaining -= count;
-        std::vector<InstancePlacement> placements;
-        const double cell = 7.0;
-        const int cells = int(std::ceil(std::sqrt(count / (std::numbers::pi / 4)))) + 1;
-        for (int iy = 0; iy < cells && int(placements.size()) < count; ++iy) {
-            for (int ix = 0; ix < cells && int(placements.size()) < count; ++ix) {
-                const double x = (ix - cells * 0.5 + unit(random)) * cell;
-                const double y = (iy - cells * 0.5 + unit(random)) * cell;
-                if (x * x + y * y > std::pow(cells * 0.5 * cell, 2)) {
-                    continue;
-                }
-                InstancePlacement p;
-                p.latitude = kLatitude + (gy + y) / kMetresPerRadian;
-                p.longitude = kLongitude + (gx + x) / (kMetresPerRadian * std::cos(kLatitude));
-                // Sunk 0.2 m so that stems stand in the ground.
-                p.baseEcef = Ellipsoid::toEcef({p.latitude, p.longitude, kGround - 0.2});
-                p.heading = float(unit(random) * 2 * std::numbers::pi);
-                p.scale = float(0.8 + 0.4 * unit(random));
-                p.tint = glm::vec3(float(0.85 + 0.3 * unit(random)));
-                p.species = species;
-                placements.push_back(p);
-            }
-        }
-        const glm::dvec3 origin = Ellipsoid::toEcef(
-            {kLatitude + gy / kMetresPerRadian,
-             kLongitude + gx / (kMetresPerRadian * std::cos(kLatitude)), kGround});
-        batches.push_back(LodSelector::makeBatch(origin, placements, lods));
-    }
-    return batches;
-}
-
-std::vector<const InstanceBatch*> pointers(const std::vector<InstanceBatch>& batches) {
-    std::vector<const InstanceBatch*> out;
-    for (const InstanceBatch& b : batches) {
-        out.push_back(&b);
-    }
-    return out;
-}
-
 const char* methodName(VegetationMethod method) {
     switch (method) {
         case VegetationMethod::Lod:
@@ -218,42 +129,6 @@ void logProgress(const char* text) {
     std::fprintf(stderr, "bench vegetation: %s\n", text);
 }
 
-// The plant: a generated oak with `leaves` leaves, its LoD and billboard clouds.
-Result<std::shared_ptr<PlantAsset>> buildOak(int leaves) {
-    Result<TreeParameters> preset = PlantGenerator::preset("oak");
-    if (!preset) {
-        return preset.error();
-    }
-    PlantGeneratorOptions generatorOptions;
-    generatorOptions.seed = 1;
-    generatorOptions.leafCount = leaves;
-    Result<PlantModel> model = PlantGenerator::generate(preset.value(), generatorOptions);
-    if (!model) {
-        return model.error();
-    }
-    Result<PlantLod> lod = buildPlantLod(model.value(), PlantLodOptions{});
-    if (!lod) {
-        return lod.error();
-    }
-    if (Status billboards = addBillboardClouds(model.value(), lod.value(), PlantLodOptions{});
-        !billboards) {
-        return billboards.error();
-    }
-    auto asset = std::make_shared<PlantAsset>();
-    asset->name = "oak";
-    asset->model = std::move(model.value());
-    asset->lod = std::move(lod.value());
-    return asset;
-}
-
-// Overview → descent → inside the forest → turn. The first group is at the centre.
-const std::vector<PathKey> kPath = {
-    {-2600.0, 0.0, 700.0, 0.0, -14.0 * kDegree},  // overview
-    {-1500.0, 0.0, 450.0, 0.0, -16.0 * kDegree},  // descent starts
-    {-160.0, 0.0, 12.0, 0.0, -2.0 * kDegree},     // at the forest edge
-    {-20.0, 0.0, 1.7, 0.0, 0.0},                  // inside the forest
-    {-20.0, 0.0, 1.7, std::numbers::pi, 0.0},     // turned around
-};
 constexpr double kSegmentSeconds = 5.0;  // path time per segment, for the 1/25 s step
 constexpr double kNextFrame = 1.0 / (25.0 * kSegmentSeconds);
 
@@ -319,13 +194,13 @@ public:
 private:
     explicit ForestScene(const VegetationBenchmarkOptions& options)
         : options_(options),
-          elevation_("flat", kGround),
+          elevation_("flat", kForestGround),
           color_("meadow", glm::vec4(0.10f, 0.14f, 0.05f, 1.0f)),
           normals_("flat.normals", &elevation_, 1.0),
           layers_{&elevation_, &color_, &normals_, {}, {}},
           evaluator_(TileFormat{256, 2}) {
         settings_.sunDirection =
-            glm::normalize(Ellipsoid::surfaceNormal(kLatitude - 0.5, kLongitude - 0.6));
+            glm::normalize(Ellipsoid::surfaceNormal(kForestLatitude - 0.5, kForestLongitude - 0.6));
         settings_.atmosphere = true;
         settings_.ocean = false;
     }
@@ -382,7 +257,7 @@ Status measureMethod(ForestScene& scene, const std::vector<const InstanceBatch*>
                      const std::vector<float>& reference, const VegetationBenchmarkOptions& options,
                      MethodSamples& samples) {
     double seconds = 0.0;
-    Result<Image> image = scene.render(cameraAt(kPath, t), forest, method, seconds);
+    Result<Image> image = scene.render(forestCamera(kForestPath, t), forest, method, seconds);
     if (!image) {
         return image.error();
     }
@@ -401,7 +276,8 @@ Status measureMethod(ForestScene& scene, const std::vector<const InstanceBatch*>
     const std::vector<float> current = luminance(image.value(), 1);
     samples.referenceError[method].push_back(
         frameError(current, reference, options.width, options.height));
-    Result<Image> next = scene.render(cameraAt(kPath, t + kNextFrame), forest, method, seconds);
+    Result<Image> next =
+        scene.render(forestCamera(kForestPath, t + kNextFrame), forest, method, seconds);
     if (!next) {
         return next.error();
     }
@@ -419,7 +295,7 @@ Status measurePath(ForestScene& scene, const std::vector<InstanceBatch>& forest,
     }
     for (int frame = 0; frame < frames; ++frame) {
         const double t = double(frame) / options.framesPerSegment;
-        const Camera c = cameraAt(kPath, t);
+        const Camera c = forestCamera(kForestPath, t);
         char line[96];
         std::snprintf(line, sizeof line, "frame %d/%d", frame + 1, frames);
         logProgress(line);
@@ -492,7 +368,7 @@ void addMethodMetrics(MethodSamples& samples, std::map<std::string, double>& met
 std::pair<double, double> selectionMilliseconds(const std::vector<InstanceBatch>& batches,
                                                 const std::vector<SpeciesLod>& lods,
                                                 const VegetationBenchmarkOptions& options) {
-    const int segments = int(kPath.size()) - 1;
+    const int segments = int(kForestPath.size()) - 1;
     LodSelectionSettings selection;
     selection.pixelAngle = 2.0 * std::tan(25.0 * kDegree) / options.height;
     LodSelector::setFrustum(selection, 50.0 * kDegree, double(options.width) / options.height);
@@ -501,7 +377,7 @@ std::pair<double, double> selectionMilliseconds(const std::vector<InstanceBatch>
     std::vector<double> selectMilliseconds;
     for (int run = 0; run < 3; ++run) {
         for (int segment = 1; segment <= segments; ++segment) {
-            const Camera c = cameraAt(kPath, double(segment) - 0.5);
+            const Camera c = forestCamera(kForestPath, double(segment) - 0.5);
             const auto start = std::chrono::steady_clock::now();
             selector.select(pointers(batches), lods, c, selection, out);
             selectMilliseconds.push_back(
@@ -516,7 +392,7 @@ std::pair<double, double> selectionMilliseconds(const std::vector<InstanceBatch>
 // and the selection alone of the million.
 Status measureScaling(ForestScene& scene, const VegetationBenchmarkOptions& options,
                       std::map<std::string, double>& metrics) {
-    const int segments = int(kPath.size()) - 1;
+    const int segments = int(kForestPath.size()) - 1;
     for (const int count : {100000, 1000000}) {
         char line[96];
         std::snprintf(line, sizeof line, "scaling: %d instances", count);
@@ -525,7 +401,7 @@ Status measureScaling(ForestScene& scene, const VegetationBenchmarkOptions& opti
             makeForest(count, scene.species(), scene.lods(), 11);
         std::vector<double> milliseconds;
         for (int segment = 1; segment <= segments; ++segment) {
-            const Camera c = cameraAt(kPath, double(segment) - 0.5);
+            const Camera c = forestCamera(kForestPath, double(segment) - 0.5);
             double bare = 0.0, seconds = 0.0;
             (void)scene.render(c, {}, VegetationMethod::Lod, seconds);
             (void)scene.render(c, {}, VegetationMethod::Lod, bare);
@@ -564,7 +440,7 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(
     if (!scene) {
         return scene.error();
     }
-    const int frames = (int(kPath.size()) - 1) * options.framesPerSegment + 1;
+    const int frames = (int(kForestPath.size()) - 1) * options.framesPerSegment + 1;
     const std::vector<InstanceBatch> forest =
         makeForest(options.trees, scene.value()->species(), scene.value()->lods(), 7);
     MethodSamples samples;

@@ -330,17 +330,19 @@ void Parser::parseBody(BlockNode& block, bool allowOverrides) {
         }
         const Token& name = peek();
         const TokenKind assign = peek(1).kind;
+        const bool renderOverride = peek(1).is(TokenKind::Identifier) && peek(1).text == "render";
         if (name.is(TokenKind::Identifier) && name.text == "override" &&
-            peek(1).is(TokenKind::Reference) && allowOverrides) {
+            (peek(1).is(TokenKind::Reference) || renderOverride) && allowOverrides) {
             OverrideNode override;
+            override.render = renderOverride;
             override.target = peek(1).text + (peek(1).field.empty() ? "" : "." + peek(1).field);
             override.targetLocation = peek(1).location;
             advance();
             advance();
             if (!at(TokenKind::LBrace)) {
                 error("E0101",
-                      "expected '{' after 'override @" + override.target + "', found " +
-                          describeToken(peek()),
+                      std::string("expected '{' after 'override ") + (renderOverride ? "" : "@") +
+                          override.target + "', found " + describeToken(peek()),
                       peek().location, "expected '{'");
                 synchronize(base);
                 continue;

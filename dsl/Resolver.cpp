@@ -22,6 +22,11 @@
 
 namespace sylva::dsl {
 
+namespace {
+// The override target key of `override render { ... }` (no block name can contain '#').
+constexpr const char* kRenderOverride = "#render";
+}  // namespace
+
 Resolver::Resolver(const SchemaRegistry& schema, std::vector<Diagnostic>& diagnostics)
     : schema_(schema), diagnostics_(diagnostics) {}
 
@@ -261,9 +266,17 @@ bool Resolver::resolveParent(Declaration& scenario, const Block*& inherited) {
     return true;
 }
 
-// `override @target { ... }`: only sources and cameras, appended to the inherited ones.
+// `override @target { ... }`: only sources and cameras, appended to the inherited ones;
+// `override render { ... }`: the render block of this scenario (kRenderOverride).
 void Resolver::collectOverrides(Declaration& scenario) {
     for (const OverrideNode& override : scenario.block->overrides) {
+        if (override.render) {
+            for (const AttributeNode& attribute : override.attributes) {
+                scenario.overrideAttributes.emplace_back(kRenderOverride, &attribute);
+                scenario.overrideScopes.push_back(scenario.scope);
+            }
+            continue;
+        }
         std::vector<std::string> fields;
         Declaration* target = names_->lookup(scenario.scope, override.target, &fields);
         if (!target || !fields.empty()) {
@@ -416,6 +429,10 @@ std::vector<std::string> Resolver::applyOverrides(ProjectModel& model,
     }
     std::vector<std::string> changed;
     for (const auto& [target, patches] : overrides) {
+        if (target == kRenderOverride) {
+            model.render = renderBlockWith(patches);
+            continue;  // not a source: nothing to rehash but the render block itself
+        }
         changed.push_back(target);
         const Declaration& declaration = *names_->find(target);
         std::vector<Block>& blocks =
@@ -431,6 +448,29 @@ std::vector<std::string> Resolver::applyOverrides(ProjectModel& model,
         *found = blocks_->check(entry, all);
     }
     return changed;
+}
+
+// The render block checked again with `patches` after its --set patches (an empty block
+// with the schema's defaults when the files have none).
+Block Resolver::renderBlockWith(const std::vector<Patch>& patches) {
+    const BlockNode* node = names_->render();
+    if (node == nullptr) {
+        for (const BlockEntry& entry : names_->blocks()) {
+            if (entry.node->keyword == "render") {
+                node = entry.node;  // the implicit block of --set render.…
+            }
+        }
+    }
+    if (node == nullptr) {
+        auto implicit = std::make_unique<BlockNode>();
+        implicit->keyword = "render";
+        implicit->keywordLocation = patches.front().attribute->nameLocation;
+        node = implicit.get();
+        implicit_.push_back(std::move(implicit));
+    }
+    std::vector<Patch> all = setPatchesOf("render");
+    all.insert(all.end(), patches.begin(), patches.end());
+    return blocks_->check(BlockEntry{node, schema_.find("render"), ""}, all);
 }
 
 const std::vector<Patch>& Resolver::setPatchesOf(const std::string& block) const {

@@ -645,6 +645,13 @@ KindSchema renderBlock() {
                             "and sky light at the ground under the camera (incident-light "
                             "metering, ISO 2720), so one viewpoint and time get one exposure "
                             "in every scenario."),
+             simple("shadows", ValueType::Bool, boolean(true),
+                    "Sun shadows of terrain and plants (cascaded shadow maps, seed 001 §7.1), "
+                    "with long terrain shadows beyond shadow_distance up to 60 km."),
+             number("shadow_distance", Dimension::Length, 2000.0, 20.0, 100000.0,
+                    "View distance covered by the fine shadow cascades (four, split by the "
+                    "practical split scheme of 2048 texels each: at 2 km the nearest cascade's "
+                    "texels are about 1 cm, the farthest's about 2.5 m)."),
              number("exposure", Dimension::None, 1.0, 0.01, 100.0,
                     "Scale applied to the exposed radiance before tone mapping (2 = one "
                     "stop brighter than ev100 or the metered exposure)."),

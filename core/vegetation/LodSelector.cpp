@@ -201,7 +201,9 @@ struct LodSelector::Frame {
     float near = 0.0f;
     float maximumDistance = 0.0f;  // infinity when unlimited
     glm::vec3 planes[4];
-    std::size_t total = 0;  // instances of the batches that passed the culling
+    float offsets[4];
+    float fixedDistance = 0.0f;  // > 0: orthographic (LodSelectionSettings::fixedDistance)
+    std::size_t total = 0;       // instances of the batches that passed the culling
     int chunks = 1;
 
     Frame(const std::vector<SpeciesLod>& s, const Camera& c, const LodSelectionSettings& set)
@@ -216,7 +218,9 @@ struct LodSelector::Frame {
           near(float(set.near)),
           maximumDistance(set.maximumDistance > 0 ? float(set.maximumDistance)
                                                   : std::numeric_limits<float>::infinity()),
-          planes{set.sidePlanes[0], set.sidePlanes[1], set.sidePlanes[2], set.sidePlanes[3]} {}
+          planes{set.sidePlanes[0], set.sidePlanes[1], set.sidePlanes[2], set.sidePlanes[3]},
+          offsets{set.sideOffsets[0], set.sideOffsets[1], set.sideOffsets[2], set.sideOffsets[3]},
+          fixedDistance(float(std::max(set.fixedDistance, 0.0))) {}
 };
 
 namespace {
@@ -315,9 +319,10 @@ std::size_t LodSelector::cullBatches(const std::vector<const InstanceBatch*>& al
         const float r = batch->boundsRadius;
         bool inside = center.z <= r - float(settings.near);
         for (int p = 0; p < 4 && inside; ++p) {
-            inside = glm::dot(settings.sidePlanes[p], center) >= -r;
+            inside = glm::dot(settings.sidePlanes[p], center) + frame.offsets[p] >= -r;
         }
-        const float nearest = std::max(glm::length(center) - r, 0.0f);
+        const float nearest = frame.fixedDistance > 0.0f ? frame.fixedDistance
+                                                         : std::max(glm::length(center) - r, 0.0f);
         const bool large = 2.0f * batch->largestInstanceRadius >=
                            float(settings.minimumPixels * nearest * frame.errorPerMetre);
         const bool withinDistance =
@@ -341,6 +346,7 @@ void LodSelector::decideChunk(int chunk, const Frame& frame) {
     decisions.reserve((last - first) / 4 + 16);
     const float minimumPixels = float(frame.settings.minimumPixels);
     const glm::vec3* planes = frame.planes;
+    const float* offsets = frame.offsets;
     std::size_t b =
         std::upper_bound(batchStart_.begin(), batchStart_.end(), first) - batchStart_.begin() - 1;
     for (std::size_t i = first; i < last;) {
@@ -354,12 +360,14 @@ void LodSelector::decideChunk(int chunk, const Frame& frame) {
             const glm::vec4 sphere = batch.spheres[k];
             const glm::vec3 center = originView + frame.rotationFloat * glm::vec3(sphere);
             const float r = sphere.w;
-            if (center.z > r - frame.near || glm::dot(planes[0], center) < -r ||
-                glm::dot(planes[1], center) < -r || glm::dot(planes[2], center) < -r ||
-                glm::dot(planes[3], center) < -r) {
+            if (center.z > r - frame.near || glm::dot(planes[0], center) + offsets[0] < -r ||
+                glm::dot(planes[1], center) + offsets[1] < -r ||
+                glm::dot(planes[2], center) + offsets[2] < -r ||
+                glm::dot(planes[3], center) + offsets[3] < -r) {
                 continue;
             }
-            const float distance = glm::length(center);
+            const float distance =
+                frame.fixedDistance > 0.0f ? frame.fixedDistance : glm::length(center);
             const float error = float(distance * frame.errorPerMetre);
             if (distance > frame.maximumDistance || 2.0f * r < minimumPixels * error) {
                 continue;

@@ -198,7 +198,14 @@ Status BatchPlan::computeHash(std::size_t index) {
         }
         const Block* cameraBlock = job.camera.empty() ? nullptr : model.findCamera(job.camera);
         const Block* pathBlock = job.path.empty() ? nullptr : model.findPath(job.path);
-        hash.add(model.render.contentHash).add(setup_.settings.width).add(setup_.settings.height);
+        // The scenario's render block: `override render { ... }` may change it.
+        Result<ScenarioGraph> scenario = project_->scenario(job.scenario);
+        if (!scenario) {
+            return scenario.error();
+        }
+        hash.add(scenario.value().model->render.contentHash)
+            .add(setup_.settings.width)
+            .add(setup_.settings.height);
         for (const Source* layer :
              {layers.value().elevation, layers.value().color, layers.value().normals}) {
             hash.add(layer ? layer->contentHash() : 0ull);

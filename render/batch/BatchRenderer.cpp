@@ -207,15 +207,26 @@ Status BatchRenderer::renderImage(BatchRun& run, const RenderJob& job) {
     if (!renderer) {
         return renderer.error();
     }
+    // The scenario's own render block (`override render { ... }`): its settings, at the
+    // plan's image size; tile cache and clipmap levels stay the plan's.
+    Result<ScenarioGraph> scenario = project().scenario(job.scenario);
+    Result<RenderSetup> scenarioSetup =
+        scenario ? RenderSetup::fromModel(*scenario.value().model, setup.settings.width,
+                                          setup.settings.height)
+                 : Result<RenderSetup>(scenario.error());
+    if (!scenarioSetup) {
+        run.fail(job, scenarioSetup.error().message);
+        return {};
+    }
     Result<JobView> view =
-        JobView::forJob(plan.model(), job, layers, tiles, setup, plan.pathOf(job));
+        JobView::forJob(plan.model(), job, layers, tiles, scenarioSetup.value(), plan.pathOf(job));
     if (!view) {
         run.fail(job, view.error().message);
         return {};
     }
     const std::string& what = view.value().what;
-    Result<Image> image = renderer.value()->render(layers, tiles, view.value().camera,
-                                                   view.value().settingsFor(setup, job));
+    Result<Image> image = renderer.value()->render(
+        layers, tiles, view.value().camera, view.value().settingsFor(scenarioSetup.value(), job));
     if (!image) {
         run.fail(job, what + ": " + image.error().message);
         return {};

@@ -72,6 +72,8 @@ Result<RenderSetup> RenderSetup::fromModel(const ProjectModel& model, int overri
         return Error{renderBlock.where("visibility") + atmosphere.error().message};
     }
     settings.atmosphereParameters = atmosphere.value();
+    settings.shadows.enabled = renderBlock.boolean("shadows", true);
+    settings.shadows.distance = renderBlock.optionalNumber("shadow_distance").value_or(2000.0);
     setup.terrain.maxLevel = static_cast<int>(renderBlock.optionalNumber("max_level").value_or(24));
     setup.cacheMegabytes =
         static_cast<std::size_t>(renderBlock.optionalNumber("cache_mb").value_or(1024));

@@ -261,6 +261,26 @@ void MeshRenderer::drawModel(const ResidentTile& resident, const MeshDrawView& v
 }
 
 void MeshRenderer::draw(const MeshDrawView& view, bool depthOnly) {
+    drawWithDepthTest(view, depthOnly, GL_GREATER);
+}
+
+void MeshRenderer::drawShadow(const ShadowView& view) {
+    if (view.cascade == nullptr || view.cascade->terrainOnly || view.camera == nullptr) {
+        return;
+    }
+    MeshDrawView light;
+    light.eye = view.camera->position;
+    light.rotation = view.lightRotation;
+    light.projection = view.projection;
+    light.pixelAngle = 0.0;  // every placement casts, however small in the cascade
+    // The statistics describe the camera's pass; the cascades must not overwrite them.
+    const MeshStatistics cameraPass = statistics_;
+    drawWithDepthTest(light, true, GL_LESS);  // shadow maps: conventional depth (ShadowCaster.h)
+    statistics_ = cameraPass;
+}
+
+void MeshRenderer::drawWithDepthTest(const MeshDrawView& view, bool depthOnly,
+                                     unsigned depthFunction) {
     statistics_.tilesDrawn = 0;
     statistics_.placementsDrawn = 0;
     statistics_.trianglesDrawn = 0;
@@ -268,7 +288,7 @@ void MeshRenderer::draw(const MeshDrawView& view, bool depthOnly) {
     program.use();
     program.setMat4("uProjection", glm::mat4(view.projection));
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_GREATER);
+    glDepthFunc(depthFunction);
     glDepthMask(GL_TRUE);
     // Static geometry: one instance per tile, all tiles' transforms in one buffer.
     std::vector<const ResidentTile*> drawn;

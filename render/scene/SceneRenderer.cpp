@@ -43,6 +43,11 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const ShaderLibrary
         return accumulator.error();
     }
     renderer->accumulator_ = std::move(accumulator.value());
+    Result<std::unique_ptr<ShadowMaps>> shadowMaps = ShadowMaps::create();
+    if (!shadowMaps) {
+        return shadowMaps.error();
+    }
+    renderer->shadowMaps_ = std::move(shadowMaps.value());
     return renderer;
 }
 
@@ -146,10 +151,33 @@ Result<std::vector<const InstanceBatch*>> SceneRenderer::streamVegetation(
     return batches;
 }
 
-void SceneRenderer::drawSample(const Camera& camera, const glm::dmat4& projection,
-                               const LevelRange& levels,
-                               const std::vector<const InstanceBatch*>& batches,
-                               const RenderSettings& settings) {
+Status SceneRenderer::drawShadowMaps(const Camera& camera,
+                                     const std::vector<const InstanceBatch*>& batches,
+                                     const RenderSettings& settings) {
+    const auto shadowStart = std::chrono::steady_clock::now();
+    std::vector<ShadowCaster*> casters{terrain_.get()};
+    if (!batches.empty()) {
+        casters.push_back(vegetation_.get());  // the batches just drawn
+    }
+    if (meshesStreamed_) {
+        casters.push_back(meshes_.get());
+    }
+    casters.insert(casters.end(), settings.shadowCasters.begin(), settings.shadowCasters.end());
+    if (Status shadows = shadowMaps_->render(camera, double(settings.width) / settings.height,
+                                             settings.sunDirection, settings.shadows, casters);
+        !shadows) {
+        return shadows;
+    }
+    glFinish();  // only to time the pass
+    statistics_.shadowPassSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - shadowStart).count();
+    return Status::success();
+}
+
+Status SceneRenderer::drawSample(const Camera& camera, const glm::dmat4& projection,
+                                 const LevelRange& levels,
+                                 const std::vector<const InstanceBatch*>& batches,
+                                 const RenderSettings& settings, bool renderShadows) {
     gbuffer_.bind();
     gbuffer_.clearColor(0, glm::vec4(0.0f));
     gbuffer_.clearColor(1, glm::vec4(0.0f));
@@ -170,12 +198,19 @@ void SceneRenderer::drawSample(const Camera& camera, const glm::dmat4& projectio
             std::chrono::duration<double>(std::chrono::steady_clock::now() - vegetationStart)
                 .count();
     }
+    if (renderShadows) {
+        if (Status shadows = drawShadowMaps(camera, batches, settings); !shadows) {
+            return shadows;
+        }
+    }
     ShadingSettings shading;
+    shading.shadowMaps = shadowMaps_.get();
     shading.sunDirection = settings.sunDirection;
     shading.atmosphere = settings.atmosphere;
     shading.atmosphereParameters = settings.atmosphereParameters;
     shading.exposure = exposureScale(statistics_.ev100) * settings.exposure;
     shading_->run(gbuffer_, output_, camera, projection, near_, shading);
+    return Status::success();
 }
 
 Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& provider,
@@ -218,7 +253,11 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
         camera.verticalFov, double(settings.width) / settings.height, near_);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     if (settings.samples == 1) {
-        drawSample(camera, projection, levels, batches.value(), settings);
+        if (Status drawn = drawSample(camera, projection, levels, batches.value(), settings, true);
+            !drawn) {
+            glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+            return drawn.error();
+        }
     } else {
         if (Status begun =
                 accumulator_->begin(settings.width, settings.height, settings.linearOutput);
@@ -226,11 +265,20 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
             glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
             return begun.error();
         }
+        // The shadow maps follow the camera, not the sub-pixel shift: drawn with the first
+        // sample, looked up by all.
+        bool first = true;
         for (const glm::dvec2& offset : SampleAccumulator::pattern(settings.samples)) {
-            drawSample(
-                camera,
-                SampleAccumulator::shifted(projection, offset, settings.width, settings.height),
-                levels, batches.value(), settings);
+            if (Status drawn = drawSample(
+                    camera,
+                    SampleAccumulator::shifted(projection, offset, settings.width, settings.height),
+                    levels, batches.value(), settings, first);
+                !drawn) {
+                Framebuffer::unbind();
+                glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+                return drawn.error();
+            }
+            first = false;
             accumulator_->add(output_, 1.0f / float(settings.samples));
         }
         accumulator_->resolve(output_);

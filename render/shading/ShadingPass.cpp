@@ -8,6 +8,10 @@
 namespace sylva::render {
 namespace {
 
+// Texture units: 0-2 the G-buffer, 3-8 the atmosphere's tables (AtmosphereLuts::bind),
+// then the shadow maps.
+constexpr int kShadowMapUnit = 9;
+
 // ECEF -> the sphere space of the shaders (z scaled by a/b).
 glm::dvec3 toSphereSpace(const glm::dvec3& ecef) {
     return {ecef.x, ecef.y, ecef.z * (Ellipsoid::kSemiMajorAxis / Ellipsoid::kSemiMinorAxis)};
@@ -77,9 +81,35 @@ void ShadingPass::run(const Framebuffer& gbuffer, const Framebuffer& target, con
     glBindTextureUnit(1, gbuffer.colorTexture(1));
     glBindTextureUnit(2, gbuffer.depthTexture());
     atmosphere_->bind(program_, 3);
+    setShadowUniforms(settings.shadowMaps);
     glBindVertexArray(emptyVertexArray_.get());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
+}
+
+void ShadingPass::setShadowUniforms(const ShadowMaps* shadowMaps) {
+    const int count = shadowMaps != nullptr ? int(shadowMaps->cascades().size()) : 0;
+    program_.setInt("uShadowMap", kShadowMapUnit);
+    program_.setInt("uShadowCascadeCount", count);
+    if (count == 0) {
+        return;  // shadows.glsl never samples the map then
+    }
+    const std::vector<glm::mat4> matrices = shadowMaps->shadowMatrices();
+    std::vector<float> texels, biases;
+    for (const ShadowCascade& cascade : shadowMaps->cascades()) {
+        texels.push_back(float(cascade.texelSize));
+        // One texel in depth units: the depth range is three radii (ShadowCascades).
+        biases.push_back(float(cascade.texelSize / (3.0 * cascade.radius)));
+    }
+    glProgramUniformMatrix4fv(program_.id(), program_.uniformLocation("uShadowMatrices[0]"), count,
+                              GL_FALSE, &matrices[0][0][0]);
+    glProgramUniform1fv(program_.id(), program_.uniformLocation("uShadowTexelSizes[0]"), count,
+                        texels.data());
+    glProgramUniform1fv(program_.id(), program_.uniformLocation("uShadowDepthBias[0]"), count,
+                        biases.data());
+    program_.setFloat("uShadowResolution", float(shadowMaps->resolution()));
+    program_.setMat3("uShadowLightRotation", glm::mat3(shadowMaps->lightRotation()));
+    glBindTextureUnit(kShadowMapUnit, shadowMaps->texture());
 }
 
 }  // namespace sylva::render

@@ -2,6 +2,7 @@
 
 #include <glad/gl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -41,6 +42,13 @@ Result<std::unique_ptr<TerrainRenderer>> TerrainRenderer::create(const ShaderLib
         return program.error();
     }
     renderer->program_ = std::move(program.value());
+    Result<ShaderProgram> shadowProgram =
+        ShaderProgram::create(library, {{GL_VERTEX_SHADER, "terrain/terrain.vert"},
+                                        {GL_FRAGMENT_SHADER, "shadows/depth_only.frag"}});
+    if (!shadowProgram) {
+        return shadowProgram.error();
+    }
+    renderer->shadowProgram_ = std::move(shadowProgram.value());
 
     const TerrainRings rings(settings.columns, settings.ringsPerLevel);
     renderer->ring_ = upload(rings.ringMesh());
@@ -248,29 +256,67 @@ Result<LevelRange> TerrainRenderer::update(
 
 void TerrainRenderer::draw(const Camera& camera, const glm::dmat4& projection,
                            const LevelRange& levels, bool ocean) {
+    const glm::dmat3 view = camera.viewRotation();
+    program_.setMat3("uEcefToView", toFloat(view));
+    program_.setInt("uHasColor", hasColor_ ? 1 : 0);
+    program_.setInt("uColor", 1);
+    program_.setInt("uNormals", 2);
+    colorTexture_.bind(1);
+    normalTexture_.bind(2);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);  // reversed-Z
+    glDisable(GL_CULL_FACE);
+    statistics_.levels = levels;
+    lastLevels_ = levels;
+    lastOcean_ = ocean;
+    statistics_.triangles = drawRings(program_, camera, view, projection, levels, ocean);
+}
+
+void TerrainRenderer::drawShadow(const ShadowView& view) {
+    if (!lastLevels_ || view.camera == nullptr) {
+        return;  // nothing updated yet
+    }
+    const Camera& camera = *view.camera;
+    const ShadowCascade& cascade = *view.cascade;
+    // Only the levels whose rings can reach the cascade: the disk around the nadir that
+    // holds the cascade's box and its depth range towards the sun (two radii), and no
+    // finer than the cascade's texels need (the fill disk closes the finest drawn level).
+    constexpr double kRadius = 6371000.0;
+    const double reach = glm::length(cascade.centerRelative) + 3.0 * cascade.radius;
+    LevelRange levels = *lastLevels_;
+    // Ring level i covers view angles pi 2^-(i+1) .. pi 2^-i around the nadir.
+    const int coarsest = int(std::floor(std::log2(std::numbers::pi * kRadius / (2.0 * reach))));
+    // Its heights come from pyramid level i - 2: pi R / (256 2^(i-2)) metres per texel.
+    const int finest =
+        kHeightLevelOffset + int(std::ceil(std::log2(std::numbers::pi * kRadius /
+                                                     (settings_.clipmapSize * cascade.texelSize))));
+    levels.finest = std::clamp(finest, levels.coarsest, levels.finest);
+    levels.coarsest = std::clamp(coarsest, levels.coarsest, levels.finest);
+    shadowProgram_.use();
+    drawRings(shadowProgram_, camera, view.lightRotation, view.projection, levels, lastOcean_);
+}
+
+std::uint64_t TerrainRenderer::drawRings(ShaderProgram& program, const Camera& camera,
+                                         const glm::dmat3& rotation, const glm::dmat4& projection,
+                                         const LevelRange& levels, bool ocean) {
     const double latitude = camera.geodetic.latitude;
     const double longitude = camera.geodetic.longitude;
     const int size = settings_.clipmapSize;
-    const glm::dmat3 view = camera.viewRotation();
     // The viewer's meridian frame is ECEF rotated by -longitude about z.
     const double c = std::cos(longitude), s = std::sin(longitude);
     const glm::dmat3 meridianToEcef(glm::dvec3(c, s, 0), glm::dvec3(-s, c, 0), glm::dvec3(0, 0, 1));
     const glm::dvec3 ground = Ellipsoid::toEcef({latitude, longitude, 0.0});
 
-    program_.use();
-    program_.setVec3("uViewerLatitude", glm::vec3(float(std::sin(latitude)),
-                                                  float(std::cos(latitude)), float(latitude)));
-    program_.setFloat("uBearingSign", latitude >= 0 ? 1.0f : -1.0f);
-    program_.setMat3("uMeridianToView", toFloat(view * meridianToEcef));
-    program_.setMat3("uEcefToView", toFloat(view));
-    program_.setVec3("uGroundToCamera", glm::vec3(view * (ground - camera.position)));
-    program_.setMat4("uProjection", glm::mat4(projection));
-    program_.setFloat("uClipmapSize", float(size));
-    program_.setInt("uOcean", ocean ? 1 : 0);
-    program_.setInt("uHasColor", hasColor_ ? 1 : 0);
-    program_.setInt("uHeight", 0);
-    program_.setInt("uColor", 1);
-    program_.setInt("uNormals", 2);
+    program.use();
+    program.setVec3("uViewerLatitude", glm::vec3(float(std::sin(latitude)),
+                                                 float(std::cos(latitude)), float(latitude)));
+    program.setFloat("uBearingSign", latitude >= 0 ? 1.0f : -1.0f);
+    program.setMat3("uMeridianToView", toFloat(rotation * meridianToEcef));
+    program.setVec3("uGroundToCamera", glm::vec3(rotation * (ground - camera.position)));
+    program.setMat4("uProjection", glm::mat4(projection));
+    program.setFloat("uClipmapSize", float(size));
+    program.setInt("uOcean", ocean ? 1 : 0);
+    program.setInt("uHeight", 0);
     for (const auto& [clipmap, name] : {std::pair{height_.get(), "uHeightLevels[0]"},
                                         std::pair{normals_.get(), "uDetailLevels[0]"}}) {
         std::vector<glm::vec4> levelUniforms(kMaxClipmapLevels, glm::vec4(0.0f));
@@ -290,32 +336,26 @@ void TerrainRenderer::draw(const Camera& camera, const glm::dmat4& projection,
             levelUniforms[level] =
                 glm::vec4(float(1.0 / texelWidth), float(1.0 / texelHeight), float(x), float(y));
         }
-        glProgramUniform4fv(program_.id(), program_.uniformLocation(name), kMaxClipmapLevels,
+        glProgramUniform4fv(program.id(), program.uniformLocation(name), kMaxClipmapLevels,
                             &levelUniforms[0].x);
     }
     heightTexture_.bind(0);
-    colorTexture_.bind(1);
-    normalTexture_.bind(2);
-
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_GREATER);  // reversed-Z
-    glDisable(GL_CULL_FACE);
-    statistics_.levels = levels;
-    statistics_.triangles = 0;
+    std::uint64_t triangles = 0;
     for (int level = levels.coarsest; level <= levels.finest; ++level) {
-        program_.setInt("uLevel", level);
-        program_.setFloat("uLevelScale", float(std::ldexp(1.0, -level)));
+        program.setInt("uLevel", level);
+        program.setFloat("uLevelScale", float(std::ldexp(1.0, -level)));
         glBindVertexArray(ring_.vertexArray.get());
         glDrawElements(GL_TRIANGLES, ring_.indexCount, GL_UNSIGNED_INT, nullptr);
-        statistics_.triangles += std::uint64_t(ring_.indexCount / 3);
+        triangles += std::uint64_t(ring_.indexCount / 3);
     }
     // The fill disk closes the finest level down to the nadir; it never blends.
-    program_.setInt("uLevel", levels.finest);
-    program_.setFloat("uLevelScale", float(std::ldexp(1.0, -levels.finest)));
+    program.setInt("uLevel", levels.finest);
+    program.setFloat("uLevelScale", float(std::ldexp(1.0, -levels.finest)));
     glBindVertexArray(fill_.vertexArray.get());
     glDrawElements(GL_TRIANGLES, fill_.indexCount, GL_UNSIGNED_INT, nullptr);
-    statistics_.triangles += std::uint64_t(fill_.indexCount / 3);
+    triangles += std::uint64_t(fill_.indexCount / 3);
     glBindVertexArray(0);
+    return triangles;
 }
 
 }  // namespace sylva::render

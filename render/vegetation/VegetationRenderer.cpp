@@ -162,7 +162,11 @@ Result<std::unique_ptr<VegetationRenderer>> VegetationRenderer::create(
          {Program{&renderer->ellipsoidProgram_, "vegetation/ellipsoid.vert",
                   "vegetation/ellipsoid.frag"},
           Program{&renderer->lineProgram_, "vegetation/line.vert", "vegetation/line.frag"},
-          Program{&renderer->meshProgram_, "vegetation/mesh.vert", "vegetation/mesh.frag"}}) {
+          Program{&renderer->meshProgram_, "vegetation/mesh.vert", "vegetation/mesh.frag"},
+          Program{&renderer->ellipsoidShadowProgram_, "shadows/ellipsoid_shadow.vert",
+                  "shadows/ellipsoid_shadow.frag"},
+          Program{&renderer->lineShadowProgram_, "shadows/line_shadow.vert",
+                  "shadows/line_shadow.frag"}}) {
         Result<ShaderProgram> program = ShaderProgram::create(
             library, {{GL_VERTEX_SHADER, p.vertex}, {GL_FRAGMENT_SHADER, p.fragment}});
         if (!program) {
@@ -268,6 +272,8 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches,
                               const Camera& camera, const glm::dmat4& projection, double near,
                               int pixelsWide, int pixelsHigh, const VegetationSettings& settings) {
     statistics_ = {};
+    shadowBatches_ = batches;
+    shadowSettings_ = settings;
     if (species_.empty()) {
         return;
     }
@@ -446,6 +452,135 @@ void VegetationRenderer::drawMeshes(const std::vector<std::unique_ptr<Vegetation
                                             nullptr, GLsizei(run.instanceCount), run.firstInstance);
         ++statistics_.drawCalls;
     }
+}
+
+void VegetationRenderer::drawShadow(const ShadowView& view) {
+    if (view.cascade->terrainOnly || species_.empty() || shadowBatches_.empty()) {
+        return;
+    }
+    const ShadowCascade& cascade = *view.cascade;
+    const VegetationSettings& settings = shadowSettings_;
+    // Orthographic selection in the light frame (camera-relative, rotated by the light
+    // rotation): a camera at the viewer's position whose view rotation is the light's, the
+    // cascade's box as four offset side planes, and one texel as the tolerated error.
+    Camera light = *view.camera;
+    light.axes = glm::transpose(view.lightRotation);
+    LodSelectionSettings selection;
+    selection.pixelAngle = cascade.texelSize;
+    selection.fixedDistance = 1.0;
+    selection.quality = settings.quality;
+    selection.minimumPixels = settings.minimumPixels;
+    selection.transitionBand = settings.transitionBand;
+    selection.closeUpMesh = settings.closeUpMesh;
+    selection.method = settings.method;
+    selection.near = -1.0e30;
+    const glm::dmat4& projection = view.projection;
+    const double halfWidth = 1.0 / projection[0][0];
+    const glm::dvec2 center(-projection[3][0] * halfWidth, -projection[3][1] * halfWidth);
+    selection.sidePlanes[0] = glm::vec3(1, 0, 0);
+    selection.sideOffsets[0] = float(halfWidth - center.x);
+    selection.sidePlanes[1] = glm::vec3(-1, 0, 0);
+    selection.sideOffsets[1] = float(halfWidth + center.x);
+    selection.sidePlanes[2] = glm::vec3(0, 1, 0);
+    selection.sideOffsets[2] = float(halfWidth - center.y);
+    selection.sidePlanes[3] = glm::vec3(0, -1, 0);
+    selection.sideOffsets[3] = float(halfWidth + center.y);
+    shadowSelector_.select(shadowBatches_, lods_, light, selection, shadowSelection_);
+    if (shadowSelection_.instances.empty()) {
+        return;
+    }
+    const std::size_t bytes = shadowSelection_.instances.size() * sizeof(DrawInstance);
+    if (bytes > instanceCapacity_) {
+        instanceCapacity_ = bytes + bytes / 2;
+        glNamedBufferData(instanceBuffer_.get(), GLsizeiptr(instanceCapacity_), nullptr,
+                          GL_STREAM_DRAW);
+    } else {
+        glInvalidateBufferData(instanceBuffer_.get());
+    }
+    glNamedBufferSubData(instanceBuffer_.get(), 0, GLsizeiptr(bytes),
+                         shadowSelection_.instances.data());
+    drawShadowRuns(view, settings);
+}
+
+void VegetationRenderer::drawShadowRuns(const ShadowView& view,
+                                        const VegetationSettings& settings) {
+    const glm::mat4 projection(view.projection);
+    const float texel = float(view.cascade->texelSize);
+    const float band = float(settings.transitionBand);
+    const bool handover = settings.method == VegetationMethod::Lod && settings.closeUpMesh;
+    glVertexArrayVertexBuffer(primitiveArray_.get(), 0, instanceBuffer_.get(), 0,
+                              sizeof(DrawInstance));
+    glBindVertexArray(primitiveArray_.get());
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    for (int pass = 0; pass < 2; ++pass) {
+        ShaderProgram& program = pass == 0 ? ellipsoidShadowProgram_ : lineShadowProgram_;
+        program.use();
+        program.setMat4("uProjection", projection);
+        program.setFloat("uTexelSize", texel);
+        program.setFloat("uBand", band);
+        program.setVec2("uViewport", glm::vec2(float(view.resolution)));
+        program.setFloat("uMaximumPointSize", maximumPointSize_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, pass == 0 ? 0 : 1,
+                         pass == 0 ? ellipsoidBuffer_.get() : lineBuffer_.get());
+        for (const DrawRun& run : shadowSelection_.runs) {
+            const std::uint32_t count = pass == 0 ? run.ellipsoids : run.lines;
+            if (run.kind != DrawRun::Kind::Primitives || count == 0) {
+                continue;
+            }
+            const Species& species = *species_[run.species];
+            const SpeciesLod& lod = lods_[run.species];
+            program.setFloat("uMeshError", handover ? lod.meshError : 0.0f);
+            if (pass == 1) {
+                glDrawArraysInstancedBaseInstance(GL_TRIANGLES, GLint(species.firstLine * 6),
+                                                  GLsizei(count * 6), GLsizei(run.instanceCount),
+                                                  run.firstInstance);
+                continue;
+            }
+            program.setInt("uQuadPass", 0);
+            glDrawArraysInstancedBaseInstance(GL_POINTS, GLint(species.firstEllipsoid),
+                                              GLsizei(count), GLsizei(run.instanceCount),
+                                              run.firstInstance);
+            // Sprites wider than the largest point: the quad pass (same split as the shader).
+            float largestScale = 0.0f;
+            for (std::uint32_t i = run.firstInstance; i < run.firstInstance + run.instanceCount;
+                 ++i) {
+                largestScale = std::max(
+                    largestScale, glm::length(glm::vec3(shadowSelection_.instances[i].axisX)));
+            }
+            const float radius = run.bucket < lod.ellipsoidRadius.size()
+                                     ? lod.ellipsoidRadius[run.bucket] * largestScale
+                                     : 0.0f;
+            if (2.0f * (radius * 1.01f + texel) / texel > maximumPointSize_) {
+                program.setInt("uQuadPass", 1);
+                glDrawArraysInstancedBaseInstance(GL_TRIANGLES, GLint(species.firstEllipsoid * 6),
+                                                  GLsizei(count * 6), GLsizei(run.instanceCount),
+                                                  run.firstInstance);
+            }
+        }
+    }
+    glDisable(GL_PROGRAM_POINT_SIZE);
+    // Meshes and billboard clouds: the G-buffer program with the light's projection (its
+    // alpha test discards transparent texels; the colour outputs have no attachment here).
+    meshProgram_.use();
+    meshProgram_.setMat4("uProjection", projection);
+    meshProgram_.setFloat("uBand", band);
+    meshProgram_.setInt("uTexture", 0);
+    constexpr float kInfinity = std::numeric_limits<float>::infinity();
+    for (const DrawRun& run : shadowSelection_.runs) {
+        const Species& species = *species_[run.species];
+        const SpeciesLod& lod = lods_[run.species];
+        if (run.kind == DrawRun::Kind::Mesh) {
+            drawMeshes(species.mesh, run, glm::vec2(0.0f, handover ? lod.meshError : kInfinity));
+        } else if (run.kind == DrawRun::Kind::Billboard &&
+                   run.bucket < species.billboardLevels.size()) {
+            const std::size_t level = run.bucket;
+            const float maximum =
+                level + 1 < lod.billboardError.size() ? lod.billboardError[level + 1] : kInfinity;
+            drawMeshes(species.billboardLevels[level], run,
+                       glm::vec2(lod.billboardError[level], maximum));
+        }
+    }
+    glBindVertexArray(0);
 }
 
 }  // namespace sylva::render

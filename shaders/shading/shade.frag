@@ -4,6 +4,7 @@
 // sky, adds aerial perspective and the sky from the atmosphere model, tone maps and writes
 // sRGB (and, when the target has a second attachment, the exposed linear radiance).
 #include "atmosphere_lookup.glsl"
+#include "shadows.glsl"
 
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outColor;
@@ -51,6 +52,8 @@ void main() {
         // transmittance LUT, the sky from the irradiance LUT of a horizontal surface,
         // tilted with the normal (isotropic sky: (1 + n.up) / 2).
         vec3 sunLight = atmosphereSunIlluminance(surfaceSphere, sun);
+        // Cascaded shadow maps (seed 001 §7.1): 0 in the shadow of terrain, plants, objects.
+        sunLight *= sunVisibility(directionEcef * distance, normalize(uViewToEcef * normal));
         // albedo.a: ambient occlusion (1 for terrain; per primitive for plants, §6.5).
         vec3 ambient = atmosphereSkyIrradiance(surfaceSphere, sun) * (0.5 + 0.5 * dot(normal, upView)) *
                        albedo.a;

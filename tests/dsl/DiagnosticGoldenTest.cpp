@@ -383,6 +383,18 @@ TEST(DiagnosticGolden, OutOfRange) {
 )SYLVA");
 }
 
+TEST(DiagnosticGolden, ShadowDistanceOutOfRangeInScenarioOverride) {
+    EXPECT_EQ(renderOf(R"SYLVA(source h : noise {}
+scenario a { layers = [@h]; override render { shadow_distance = 5m } }
+)SYLVA"),
+              R"SYLVA(error[E0404]: value out of range for 'shadow_distance'
+ --> test.sylva:2:65
+  |
+2 | scenario a { layers = [@h]; override render { shadow_distance = 5m } }
+  |                                                                 ^^ 5m is below the minimum 20m
+)SYLVA");
+}
+
 TEST(DiagnosticGolden, MissingRequired) {
     EXPECT_EQ(renderOf(R"SYLVA(camera ground { heading = 20deg }
 )SYLVA"),

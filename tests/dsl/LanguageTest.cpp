@@ -66,6 +66,31 @@ TEST(Language, OneModelPerScenarioWithSharedHashes) {
     EXPECT_EQ(same->findScenario("same")->find("layers")->value.get<ValueList>()->size(), 2u);
 }
 
+// `override render { ... }` gives a scenario its own render attributes (sun shadows on
+// in one, off in another), inherited through `extends`; the other scenarios keep the
+// project's render block.
+TEST(Language, ScenarioOverridesRenderAttributes) {
+    const char* text =
+        "source height : noise { seed = 7 }\n"
+        "render { shadow_distance = 3km }\n"
+        "scenario today { layers = [@height] }\n"
+        "scenario flat extends today { override render { shadows = false } }\n"
+        "scenario flatter extends flat { override render { shadow_distance = 500m } }\n";
+    LoadResult result = loadProjectFromString(text, "r.sylva");
+    ASSERT_EQ(result.render(), "");
+    const ProjectModel* today = result.modelFor("today");
+    const ProjectModel* flat = result.modelFor("flat");
+    const ProjectModel* flatter = result.modelFor("flatter");
+    ASSERT_TRUE(today && flat && flatter);
+    EXPECT_TRUE(*today->render.find("shadows")->value.get<bool>());
+    EXPECT_FALSE(*flat->render.find("shadows")->value.get<bool>());
+    EXPECT_EQ(flat->render.find("shadow_distance")->value.get<Quantity>()->value, 3000.0);
+    EXPECT_FALSE(*flatter->render.find("shadows")->value.get<bool>());
+    EXPECT_EQ(flatter->render.find("shadow_distance")->value.get<Quantity>()->value, 500.0);
+    EXPECT_NE(today->render.contentHash, flat->render.contentHash);
+    EXPECT_EQ(today->findSource("height")->contentHash, flat->findSource("height")->contentHash);
+}
+
 TEST(Language, DeviceImportIsRefused) {
     LoadResult result = loadProjectFromString("import \"/dev/zero\" as z\n", "dev.sylva");
     ASSERT_EQ(result.diagnostics.size(), 1u);

@@ -98,7 +98,7 @@ protected:
         settings.sunDirection = glm::normalize(c.position);  // sun at the zenith: even ground
         settings.atmosphere = false;
         settings.ocean = false;
-        TerrainLayers layers{elevation_, nullptr, normals_, {}};
+        TerrainLayers layers{elevation_, nullptr, normals_, {}, {}};
         Result<Image> image = renderer_->render(layers, *evaluator_, c, settings);
         EXPECT_TRUE(image) << image.error().message;
         return image ? image.value() : Image{};
@@ -224,7 +224,7 @@ TEST_F(AntiAliasing, RadianceIsAveragedToo) {
     settings.sunDirection = glm::normalize(c.position);
     settings.atmosphere = false;
     settings.ocean = false;
-    TerrainLayers layers{elevation_, nullptr, normals_, {}};
+    TerrainLayers layers{elevation_, nullptr, normals_, {}, {}};
     Result<Image> image = renderer_->render(layers, *evaluator_, c, settings);
     ASSERT_TRUE(image) << image.error().message;
     ASSERT_EQ(image.value().radiance.size(), std::size_t(64 * 36 * 4));
@@ -244,7 +244,7 @@ TEST_F(AntiAliasing, SampleCountsOutsideTheRangeAreErrors) {
         settings.width = 32;
         settings.height = 18;
         settings.samples = samples;
-        TerrainLayers layers{elevation_, nullptr, normals_, {}};
+        TerrainLayers layers{elevation_, nullptr, normals_, {}, {}};
         Result<Image> image = renderer_->render(layers, *evaluator_, camera(), settings);
         ASSERT_FALSE(image);
         EXPECT_NE(image.error().message.find("samples"), std::string::npos);

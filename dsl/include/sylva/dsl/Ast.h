@@ -63,10 +63,11 @@ struct AttributeNode {
     SourceLocation opLocation;
 };
 
-// `override @target { attributes }` inside a scenario.
+// `override @target { attributes }` or `override render { attributes }` inside a scenario.
 struct OverrideNode {
     std::string target;  // the reference as written, without '@' ("forest", "ns.forest")
     SourceLocation targetLocation;
+    bool render = false;  // `override render { ... }`: the render block (target "render")
     std::vector<AttributeNode> attributes;
 };
 

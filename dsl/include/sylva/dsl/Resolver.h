@@ -97,6 +97,7 @@ private:
     // blocks they change.
     std::vector<std::string> applyOverrides(ProjectModel& model, const Declaration& scenario);
     const std::vector<Patch>& setPatchesOf(const std::string& block) const;
+    Block renderBlockWith(const std::vector<Patch>& patches);
 
     const SchemaRegistry& schema_;
     std::vector<Diagnostic>& diagnostics_;

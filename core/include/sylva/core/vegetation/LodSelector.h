@@ -111,6 +111,13 @@ struct LodSelectionSettings {
     // origin) and the near distance in metres.
     glm::vec3 sidePlanes[4];
     double near = 0.1;
+    // Orthographic views (the sun's shadow maps): `sideOffsets` move the side planes off the
+    // origin (a plane keeps points with dot(normal, p) + offset >= 0, metres), and a
+    // positive `fixedDistance` (metres) replaces each instance's distance in the error
+    // (e = fixedDistance × pixelAngle: one shadow texel) and in the size culling. Set
+    // `near` very negative to keep instances on either side of the origin.
+    float sideOffsets[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    double fixedDistance = 0.0;
 };
 
 // What the GPU receives per drawn instance: the model → view transform (three axis

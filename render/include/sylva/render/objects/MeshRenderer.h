@@ -35,6 +35,7 @@
 #include "sylva/render/gl/GlHandle.h"
 #include "sylva/render/gl/ShaderLibrary.h"
 #include "sylva/render/gl/ShaderProgram.h"
+#include "sylva/render/shadows/ShadowCaster.h"
 
 namespace sylva::render {
 
@@ -63,7 +64,7 @@ struct MeshStatistics {
 
 struct MeshGpuGeometry;  // buffers of one MeshGeometry (MeshRenderer.cpp)
 
-class MeshRenderer {
+class MeshRenderer : public ShadowCaster {
 public:
     static Result<std::unique_ptr<MeshRenderer>> create(const ShaderLibrary& library);
     ~MeshRenderer();
@@ -76,6 +77,9 @@ public:
     // Draws the resident tiles with the current framebuffer, depth test and viewport;
     // sets and restores its own depth state (GREATER, writes on).
     void draw(const MeshDrawView& view, bool depthOnly);
+    // Depth of the resident tiles into one shadow cascade (ShadowCaster.h: the sun's
+    // orthographic view, depth test LESS); skips the terrain-only cascade.
+    void drawShadow(const ShadowView& view) override;
 
     const MeshStatistics& statistics() const { return statistics_; }
 
@@ -85,6 +89,8 @@ private:
     const std::vector<std::unique_ptr<MeshGpuGeometry>>& modelParts(
         const std::shared_ptr<const MeshModel>& model);
     void drawModel(const ResidentTile& tile, const MeshDrawView& view);
+    // draw() with `depthFunction` (GL_GREATER for the reversed-Z camera, GL_LESS for shadows).
+    void drawWithDepthTest(const MeshDrawView& view, bool depthOnly, unsigned depthFunction);
 
     ShaderProgram meshProgram_, depthProgram_;
     GlBuffer instanceBuffer_;

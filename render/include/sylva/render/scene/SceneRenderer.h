@@ -23,6 +23,7 @@
 #include "sylva/render/objects/MeshRenderer.h"
 #include "sylva/render/scene/SampleAccumulator.h"
 #include "sylva/render/shading/ShadingPass.h"
+#include "sylva/render/shadows/ShadowMaps.h"
 #include "sylva/render/terrain/TerrainRenderer.h"
 #include "sylva/render/vegetation/VegetationRenderer.h"
 
@@ -53,6 +54,11 @@ struct RenderSettings {
     int samples = 1;
     VegetationSettings vegetation;
     MeshSettings meshes;  // buildings and models of the scenario's `meshes` layers
+    // Sun shadows (cascaded shadow maps, seed 001 §7.1): the terrain always casts; more
+    // casters (not owned; e.g. the mesh/building renderer of issue 17, test objects) are
+    // drawn into every cascade but the terrain-only one after the SceneRenderer's own.
+    ShadowSettings shadows;
+    std::vector<ShadowCaster*> shadowCasters;
     // Plants handed in directly (tests, benchmarks), drawn with the species of
     // vegetation(); the `plants` layers of the scenario are streamed besides.
     std::vector<const InstanceBatch*> instanceBatches;
@@ -76,6 +82,7 @@ struct RenderStatistics {
     double vegetationPassSeconds = 0;  // selection, upload and the plants' G-buffer passes
     double meshPassSeconds = 0;        // buildings and models: streaming and G-buffer pass
     MeshStatistics meshes;
+    double shadowPassSeconds = 0;  // all cascades of the shadow maps (to glFinish)
     VegetationStatistics vegetation;
     VegetationStreamStatistics vegetationStream;
 };
@@ -102,6 +109,8 @@ public:
     TerrainRenderer& terrain() { return *terrain_; }
     VegetationRenderer& vegetation() { return *vegetation_; }
     MeshRenderer& meshes() { return *meshes_; }
+    // The shadow maps of the last render (no cascades when shadows were off).
+    const ShadowMaps& shadowMaps() const { return *shadowMaps_; }
 
 private:
     SceneRenderer() = default;
@@ -117,9 +126,15 @@ private:
                                                                const RenderSettings& settings);
     // One sample: terrain, buildings/models and plants into the G-buffer with `projection`, shaded
     // into output_.
-    void drawSample(const Camera& camera, const glm::dmat4& projection, const LevelRange& levels,
-                    const std::vector<const InstanceBatch*>& batches,
-                    const RenderSettings& settings);
+    // With `renderShadows`, draws the sun's shadow maps (after the plants, whose selection
+    // the vegetation caster reuses) before shading. Fails if a shadow caster fails.
+    Status drawSample(const Camera& camera, const glm::dmat4& projection, const LevelRange& levels,
+                      const std::vector<const InstanceBatch*>& batches,
+                      const RenderSettings& settings, bool renderShadows);
+    // The cascades of settings.shadows with the terrain, the plants just drawn, the
+    // scenario's meshes and settings.shadowCasters.
+    Status drawShadowMaps(const Camera& camera, const std::vector<const InstanceBatch*>& batches,
+                          const RenderSettings& settings);
     // EV100 of an incident-light meter at the ground under the camera (see RenderSettings).
     double meterEv100(const Camera& camera, double groundHeight, const RenderSettings& settings);
     // The stream layers of the scenario's plants sources; registers each species'
@@ -141,6 +156,7 @@ private:
     std::map<std::uint64_t, std::uint32_t> speciesOfModel_;  // model content hash -> species
     std::unique_ptr<ShadingPass> shading_;
     std::unique_ptr<SampleAccumulator> accumulator_;
+    std::unique_ptr<ShadowMaps> shadowMaps_;
     Framebuffer gbuffer_;
     Framebuffer output_;
     RenderStatistics statistics_;

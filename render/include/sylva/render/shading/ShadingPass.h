@@ -15,6 +15,7 @@
 #include "sylva/render/gl/GlHandle.h"
 #include "sylva/render/gl/ShaderLibrary.h"
 #include "sylva/render/gl/ShaderProgram.h"
+#include "sylva/render/shadows/ShadowMaps.h"
 
 namespace sylva::render {
 
@@ -25,6 +26,9 @@ struct ShadingSettings {
     // Scale from luminance (cd/m^2) to the tone mapper's input: exposureScale(EV100) x
     // the project's exposure factor (SceneRenderer meters EV100).
     double exposure = 1.0 / 40000.0;
+    // The sun's cascaded shadow maps drawn for this camera (not owned; null or no
+    // cascades: no shadows). Looked up by shaders/shading/shadows.glsl.
+    const ShadowMaps* shadowMaps = nullptr;
 };
 
 class AtmosphereLuts;
@@ -49,6 +53,7 @@ public:
 
 private:
     ShadingPass() = default;
+    void setShadowUniforms(const ShadowMaps* shadowMaps);
     ShaderProgram program_;
     GlVertexArray emptyVertexArray_;  // full-screen triangle: no attributes
     std::unique_ptr<AtmosphereLuts> atmosphere_;

@@ -29,6 +29,7 @@
 #include "sylva/render/gl/GlHandle.h"
 #include "sylva/render/gl/ShaderLibrary.h"
 #include "sylva/render/gl/ShaderProgram.h"
+#include "sylva/render/shadows/ShadowCaster.h"
 #include "sylva/render/terrain/ClipmapTexture.h"
 
 namespace sylva::render {
@@ -51,11 +52,11 @@ struct TerrainFrameStatistics {
     double updateSeconds = 0;  // CPU clipmap update including tile evaluation
 };
 
-class TerrainRenderer {
+class TerrainRenderer : public ShadowCaster {
 public:
     static Result<std::unique_ptr<TerrainRenderer>> create(const ShaderLibrary& library,
                                                            const TerrainSettings& settings);
-    ~TerrainRenderer();
+    ~TerrainRenderer() override;
 
     // The ring levels to draw for `camera` seen through `pixels` rows.
     LevelRange visibleLevels(const Camera& camera, double heightAboveTerrain, int pixels) const;
@@ -83,6 +84,12 @@ public:
     void draw(const Camera& camera, const glm::dmat4& projection, const LevelRange& levels,
               bool ocean);
 
+    // Shadow caster (seed 001 §7.1): the rings of the levels last drawn by draw(), seen from
+    // the sun (depth only, orthographic), limited to the levels that reach the cascade and
+    // no finer than its texels. Camera-relative like draw(), so the precision is the
+    // G-buffer's. Draws every cascade, the terrain-only one included.
+    void drawShadow(const ShadowView& view) override;
+
     const TerrainFrameStatistics& statistics() const { return statistics_; }
     const TerrainSettings& settings() const { return settings_; }
 
@@ -95,9 +102,18 @@ private:
         std::int32_t indexCount = 0;
     };
     static Mesh upload(const TerrainMesh& mesh);
+    // Sets the ring uniforms of `program` (terrain.vert) for `camera`, `rotation` (ECEF ->
+    // the frame `projection` expects) and draws `levels` plus the fill disk; returns the
+    // triangle count.
+    std::uint64_t drawRings(ShaderProgram& program, const Camera& camera,
+                            const glm::dmat3& rotation, const glm::dmat4& projection,
+                            const LevelRange& levels, bool ocean);
 
     TerrainSettings settings_;
     ShaderProgram program_;
+    ShaderProgram shadowProgram_;           // terrain.vert + depth_only.frag
+    std::optional<LevelRange> lastLevels_;  // of the last draw(), for the shadow casters
+    bool lastOcean_ = true;
     Mesh ring_;
     Mesh fill_;
     std::unique_ptr<Clipmap> height_;

@@ -26,6 +26,7 @@
 #include "sylva/render/gl/GlHandle.h"
 #include "sylva/render/gl/ShaderLibrary.h"
 #include "sylva/render/gl/ShaderProgram.h"
+#include "sylva/render/shadows/ShadowCaster.h"
 
 namespace sylva::render {
 
@@ -55,10 +56,10 @@ struct VegetationStatistics {
     double uploadSeconds = 0;  // CPU → GPU instance buffer
 };
 
-class VegetationRenderer {
+class VegetationRenderer : public ShadowCaster {
 public:
     static Result<std::unique_ptr<VegetationRenderer>> create(const ShaderLibrary& library);
-    ~VegetationRenderer();
+    ~VegetationRenderer() override;
 
     // Uploads one species; returns its index (species indices of batches refer to it).
     // Assets are kept alive by the renderer. Fails (the error names the plant), uploading
@@ -77,6 +78,13 @@ public:
               const glm::dmat4& projection, double near, int pixelsWide, int pixelsHigh,
               const VegetationSettings& settings);
 
+    // Shadow caster (seed 001 §7.1): the batches and settings of the last draw() (which
+    // must still be alive) selected again for the cascade's orthographic box with one
+    // texel as the tolerated error; ellipsoids and lines ray-cast along the light
+    // (shaders/shadows), with the LoD's noise alpha test as the crown's transmittance;
+    // meshes and billboard clouds alpha-tested. Skips the terrain-only cascade.
+    void drawShadow(const ShadowView& view) override;
+
     const VegetationStatistics& statistics() const { return statistics_; }
     const LodSelection& lastSelection() const { return selection_; }
 
@@ -87,12 +95,15 @@ private:
     // point (then the run is drawn a second time, as quads, for those ellipsoids).
     bool mayExceedPointSize(const DrawRun& run, double pixelAngle, double cornerTangent,
                             double near) const;
+    void drawShadowRuns(const ShadowView& view, const VegetationSettings& settings);
     void drawMeshes(const std::vector<std::unique_ptr<VegetationMesh>>& meshes, const DrawRun& run,
                     glm::vec2 interval);
 
     ShaderProgram ellipsoidProgram_;
     ShaderProgram lineProgram_;
     ShaderProgram meshProgram_;
+    ShaderProgram ellipsoidShadowProgram_;
+    ShaderProgram lineShadowProgram_;
     std::vector<std::unique_ptr<Species>> species_;
     std::vector<SpeciesLod> lods_;
     GlBuffer ellipsoidBuffer_, lineBuffer_;  // all species, concatenated
@@ -103,6 +114,11 @@ private:
     float maximumPointSize_ = 1.0f;  // pixels: the driver's largest point sprite
     LodSelector selector_;           // its scratch is kept from frame to frame
     LodSelection selection_;
+    // The shadow pass: the last draw()'s input, its own selector scratch and selection.
+    std::vector<const InstanceBatch*> shadowBatches_;
+    VegetationSettings shadowSettings_;
+    LodSelector shadowSelector_;
+    LodSelection shadowSelection_;
     VegetationStatistics statistics_;
 };
 

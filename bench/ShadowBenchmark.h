@@ -1,0 +1,23 @@
+// The sun shadows' part of `sylva bench shading`: every frame of the terrain benchmark's
+// flight (bench/TerrainFlight.h) and of the vegetation benchmark's forest path
+// (bench/BenchForest.h) is rendered with and without shadows (tiles and plants warmed up
+// first, both waiting for every tile, so the two renders draw the same), and the median
+// frame times (SceneRenderer's draw + shadow maps + shade + read-back, without the clipmap
+// update) are compared. Keys: `shadow_frame_ratio` (the larger of the two scenes' ratios
+// of medians, with / without), `shadow_frame_ratio_terrain`, `shadow_frame_ratio_forest`,
+// `shadow_ms_median_terrain`, `shadow_ms_median_forest` (the shadow maps alone).
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "sylva/bench/ShadingBenchmark.h"
+#include "sylva/core/base/Result.h"
+#include "sylva/render/gl/ShaderLibrary.h"
+
+namespace sylva::bench {
+
+Status measureShadows(const render::ShaderLibrary& library, const ShadingBenchmarkOptions& options,
+                      std::map<std::string, double>& metrics);
+
+}  // namespace sylva::bench

@@ -1,0 +1,109 @@
+#include "sylva/render/shadows/ShadowCascades.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sylva/core/base/Check.h"
+
+namespace sylva::render {
+namespace {
+
+// The smallest sphere around the frustum slice between view distances `near` and `far`
+// (along the view axis) whose corners lie at lateral distance k × distance: its centre
+// is on the axis at c = (near + far)(1 + k²)/2, or at `far` when the far face alone
+// decides. Depends only on the distances and the field of view, so cascades keep their
+// size whatever way the camera turns.
+void sliceSphere(double near, double far, double k, double& center, double& radius) {
+    const double k2 = k * k;
+    center = std::min(0.5 * (near + far) * (1.0 + k2), far);
+    radius = std::sqrt((far - center) * (far - center) + k2 * far * far);
+}
+
+ShadowCascade makeCascade(const Camera& camera, const glm::dmat3& light, double near, double far,
+                          double k, int resolution) {
+    ShadowCascade cascade;
+    cascade.nearDistance = near;
+    cascade.farDistance = far;
+    double center = 0, sphereRadius = 0;
+    sliceSphere(near, far, k, center, sphereRadius);
+    // One texel of margin on either side: snapping moves the box by up to half a texel.
+    const double radius = sphereRadius * resolution / (resolution - 2.0);
+    const double texel = 2.0 * radius / resolution;
+    cascade.radius = radius;
+    cascade.texelSize = texel;
+    cascade.centerRelative = -center * camera.axes[2];  // the view axis is -z (back)
+    // Snap in absolute light coordinates (double), then return to camera-relative ones:
+    // the texel grid is fixed to the Earth, not to the camera.
+    const glm::dvec3 cameraLight = light * camera.position;
+    const glm::dvec3 absolute = light * (camera.position + cascade.centerRelative);
+    const glm::dvec3 snapped(std::floor(absolute.x / texel + 0.5) * texel,
+                             std::floor(absolute.y / texel + 0.5) * texel, absolute.z);
+    const glm::dvec3 box = snapped - cameraLight;
+    const double depthNear = box.z + 2.0 * radius;  // towards the sun
+    const double depthFar = box.z - radius;
+    glm::dmat4 projection(0.0);
+    projection[0][0] = 1.0 / radius;
+    projection[3][0] = -box.x / radius;
+    projection[1][1] = 1.0 / radius;
+    projection[3][1] = -box.y / radius;
+    projection[2][2] = -1.0 / (depthNear - depthFar);
+    projection[3][2] = depthNear / (depthNear - depthFar);
+    projection[3][3] = 1.0;
+    cascade.projection = projection;
+    return cascade;
+}
+
+}  // namespace
+
+glm::dmat3 ShadowCascades::lightRotation(const glm::dvec3& sunDirection) {
+    const glm::dvec3 z = glm::normalize(sunDirection);
+    const glm::dvec3 reference = std::abs(z.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
+    const glm::dvec3 x = glm::normalize(glm::cross(reference, z));
+    const glm::dvec3 y = glm::cross(z, x);
+    // glm is column-major: the transpose of the matrix with columns x, y, z has them as rows.
+    return glm::transpose(glm::dmat3(x, y, z));
+}
+
+std::vector<double> ShadowCascades::splits(const ShadowSettings& settings) {
+    SYLVA_CHECK(settings.cascades >= 1 && settings.distance > settings.firstSplitStart);
+    const int n = settings.cascades;
+    const double start = settings.firstSplitStart;
+    const double end = settings.distance;
+    std::vector<double> out(std::size_t(n) + 1, 0.0);
+    for (int i = 1; i < n; ++i) {
+        const double fraction = double(i) / n;
+        const double logarithmic = start * std::pow(end / start, fraction);
+        const double uniform = start + (end - start) * fraction;
+        out[std::size_t(i)] =
+            settings.splitBlend * logarithmic + (1.0 - settings.splitBlend) * uniform;
+    }
+    out[std::size_t(n)] = end;
+    return out;
+}
+
+std::vector<ShadowCascade> ShadowCascades::fit(const Camera& camera, double aspect,
+                                               const glm::dvec3& sunDirection,
+                                               const ShadowSettings& settings) {
+    std::vector<ShadowCascade> cascades;
+    if (!settings.enabled) {
+        return cascades;
+    }
+    SYLVA_CHECK(settings.resolution >= 16 && aspect > 0);
+    const double tangentY = std::tan(camera.verticalFov / 2);
+    const double k = std::hypot(tangentY, tangentY * aspect);
+    const glm::dmat3 light = lightRotation(sunDirection);
+    const std::vector<double> distances = splits(settings);
+    for (std::size_t i = 0; i + 1 < distances.size(); ++i) {
+        cascades.push_back(
+            makeCascade(camera, light, distances[i], distances[i + 1], k, settings.resolution));
+    }
+    if (settings.terrainDistance > settings.distance) {
+        ShadowCascade terrain =
+            makeCascade(camera, light, 0.0, settings.terrainDistance, k, settings.resolution);
+        terrain.terrainOnly = true;
+        cascades.push_back(terrain);
+    }
+    return cascades;
+}
+
+}  // namespace sylva::render

@@ -1,0 +1,102 @@
+#include "sylva/render/shadows/ShadowMaps.h"
+
+#include <glad/gl.h>
+
+#include <string>
+
+namespace sylva::render {
+
+Result<std::unique_ptr<ShadowMaps>> ShadowMaps::create() {
+    std::unique_ptr<ShadowMaps> maps(new ShadowMaps());
+    maps->framebuffer_ = createGlFramebuffer();
+    return maps;
+}
+
+Status ShadowMaps::ensureTexture(int resolution) {
+    if (texture_ && resolution_ == resolution) {
+        return Status::success();
+    }
+    GlTexture texture = createGlTexture(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(texture.get(), 1, GL_DEPTH_COMPONENT32F, resolution, resolution,
+                       kMaxCascades);
+    if (GLenum error = glGetError(); error != GL_NO_ERROR) {
+        return Error{"shadow maps: the driver cannot make a " + std::to_string(resolution) +
+                     "² × " + std::to_string(kMaxCascades) +
+                     " GL_DEPTH_COMPONENT32F texture array (GL error " + std::to_string(error) +
+                     ")"};
+    }
+    // Nearest: shadows.glsl filters itself, comparing each texel with its own depth.
+    glTextureParameteri(texture.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(texture.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(texture.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture.get(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTextureParameteri(texture.get(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    texture_ = std::move(texture);
+    resolution_ = resolution;
+    glNamedFramebufferDrawBuffer(framebuffer_.get(), GL_NONE);
+    glNamedFramebufferReadBuffer(framebuffer_.get(), GL_NONE);
+    glNamedFramebufferTextureLayer(framebuffer_.get(), GL_DEPTH_ATTACHMENT, texture_.get(), 0, 0);
+    const GLenum status = glCheckNamedFramebufferStatus(framebuffer_.get(), GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        texture_ = {};
+        return Error{
+            "shadow maps: a framebuffer with only a GL_DEPTH_COMPONENT32F array layer is "
+            "incomplete on this driver (status " +
+            std::to_string(status) + ")"};
+    }
+    return Status::success();
+}
+
+Status ShadowMaps::render(const Camera& camera, double aspect, const glm::dvec3& sunDirection,
+                          const ShadowSettings& settings,
+                          const std::vector<ShadowCaster*>& casters) {
+    cascades_ = ShadowCascades::fit(camera, aspect, sunDirection, settings);
+    if (cascades_.empty()) {
+        return Status::success();
+    }
+    SYLVA_CHECK(int(cascades_.size()) <= kMaxCascades);
+    if (Status status = ensureTexture(settings.resolution); !status) {
+        cascades_.clear();
+        return status;
+    }
+    lightRotation_ = ShadowCascades::lightRotation(sunDirection);
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
+    glViewport(0, 0, resolution_, resolution_);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_DEPTH_CLAMP);
+    glDisable(GL_CULL_FACE);
+    for (std::size_t i = 0; i < cascades_.size(); ++i) {
+        glNamedFramebufferTextureLayer(framebuffer_.get(), GL_DEPTH_ATTACHMENT, texture_.get(), 0,
+                                       GLint(i));
+        const float one = 1.0f;
+        glClearNamedFramebufferfv(framebuffer_.get(), GL_DEPTH, 0, &one);
+        ShadowView view;
+        view.camera = &camera;
+        view.lightRotation = lightRotation_;
+        view.projection = cascades_[i].projection;
+        view.sunDirection = glm::normalize(sunDirection);
+        view.cascade = &cascades_[i];
+        view.cascadeIndex = int(i);
+        view.resolution = resolution_;
+        for (ShadowCaster* caster : casters) {
+            caster->drawShadow(view);
+        }
+    }
+    glDisable(GL_DEPTH_CLAMP);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return Status::success();
+}
+
+std::vector<glm::mat4> ShadowMaps::shadowMatrices() const {
+    std::vector<glm::mat4> out;
+    for (const ShadowCascade& cascade : cascades_) {
+        out.emplace_back(cascade.projection * glm::dmat4(lightRotation_));
+    }
+    return out;
+}
+
+}  // namespace sylva::render

@@ -1,0 +1,47 @@
+#version 450 core
+// Ray-cast ellipsoid depth for the sun's shadow map (orthographic: the ray through a
+// texel runs along the light's -z from the ellipsoid's top). The LoD's noise alpha test
+// (§3.4.1, the species' own threshold and cells) perforates the crown as in the image, so
+// the filtered shadow lookup sees the crown's transmittance; the screen-door fades of the
+// LoD transitions apply as in the G-buffer pass.
+#include "../vegetation/vegetation.glsl"
+
+layout(location = 0) flat in mat3 vToLocal;
+layout(location = 3) flat in vec4 vLocalCenterTop;
+layout(location = 4) flat in vec4 vFadeNoise;
+layout(location = 5) flat in uvec2 vSeedDither;
+
+uniform mat4 uProjection;
+uniform vec2 uViewport;  // texels
+
+layout(depth_greater) out float gl_FragDepth;
+
+void main() {
+    vec2 ndc = gl_FragCoord.xy / uViewport * 2.0 - 1.0;
+    vec2 xy = (ndc - vec2(uProjection[3][0], uProjection[3][1])) /
+              vec2(uProjection[0][0], uProjection[1][1]);
+    vec3 origin = vToLocal * vec3(xy, vLocalCenterTop.w) - vLocalCenterTop.xyz;
+    vec3 direction = -vToLocal[2];  // toLocal × (0, 0, -1)
+    float a = dot(direction, direction);
+    float b = dot(origin, direction);
+    float h = b * b - a * (dot(origin, origin) - 1.0);
+    float t = (-b - sqrt(max(h, 0.0))) / a;
+    vec3 q = origin + t * direction;
+    vec3 width = fwidth(q);  // before any discard
+    float footprint = max(max(width.x, width.y), width.z);
+    if (h < 0.0) {
+        discard;
+    }
+    float dither = ditherValue(gl_FragCoord.xy, uintBitsToFloat(vSeedDither.y));
+    if (dither >= vFadeNoise.x || dither < vFadeNoise.y) {
+        discard;
+    }
+    float cells = vFadeNoise.z;
+    if (footprint > 0.0) {
+        cells = min(cells, exp2(floor(log2(max(1.0 / footprint, 1.0)))));
+    }
+    if (vFadeNoise.w > 0.0 && ellipsoidNoise(clamp(q, -1.0, 1.0), cells, vSeedDither.x) < vFadeNoise.w) {
+        discard;
+    }
+    gl_FragDepth = uProjection[2][2] * (vLocalCenterTop.w - t) + uProjection[3][2];
+}
