@@ -22,6 +22,8 @@ endif()
 # GeographicLib ships no CMake config on Debian: use pkg-config.
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(GEOGRAPHICLIB REQUIRED IMPORTED_TARGET geographiclib)
+# Viewpoint sheets (core/scene/ViewpointSheet): PDF and PNG pages drawn with cairo.
+pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
 
 # Plants (sylva_core): tinygltf is used header-only (TINYGLTF_IMPLEMENTATION in
 # core/plants/TinyGltf.cpp); its image code is the packaged stb (libstb-dev), whose

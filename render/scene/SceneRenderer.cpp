@@ -36,11 +36,16 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const ShaderLibrary
 
 SceneRenderer::~SceneRenderer() = default;
 
-glm::dmat4 SceneRenderer::projection(double verticalFov, double aspect, double near) {
+glm::dmat4 SceneRenderer::projection(double verticalFov, double aspect, double near,
+                                     const glm::dvec2& lensShift) {
     const double f = 1.0 / std::tan(verticalFov / 2);
     glm::dmat4 p(0.0);
     p[0][0] = f / aspect;
     p[1][1] = f;
+    // Off-axis by the lens shift: ndc = scale * x / -z - 2 shift, so the optical axis
+    // lands at ndc -2 shift (ImageProjection's principal point).
+    p[2][0] = 2.0 * lensShift.x;
+    p[2][1] = 2.0 * lensShift.y;
     p[2][3] = -1.0;  // w = -z
     p[3][2] = near;  // z = near, so depth = near / distance after the divide
     return p;
@@ -121,7 +126,7 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     const double near = std::clamp(0.3 * aboveTerrain, 0.02, 1.0e4);
     near_ = near;
     const glm::dmat4 projection = SceneRenderer::projection(
-        camera.verticalFov, double(settings.width) / settings.height, near);
+        camera.verticalFov, double(settings.width) / settings.height, near, camera.lensShift);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     gbuffer_.bind();
     gbuffer_.clearColor(0, glm::vec4(0.0f));

@@ -28,6 +28,8 @@ void ShadingPass::run(const Framebuffer& gbuffer, const Framebuffer& target, con
     program_.setInt("uDepth", 2);
     program_.setVec2("uProjectionScale",
                      glm::vec2(float(projection[0][0]), float(projection[1][1])));
+    program_.setVec2("uProjectionOffset",
+                     glm::vec2(float(projection[2][0]), float(projection[2][1])));
     program_.setFloat("uNear", float(near));
     program_.setMat3("uViewToEcef", glm::mat3(glm::transpose(view)));
     program_.setVec3("uCameraEcef", glm::vec3(camera.position));

@@ -12,7 +12,8 @@ layout(location = 1) out vec4 outRadiance;  // linear, after exposure (EXR outpu
 uniform sampler2D uAlbedo;
 uniform sampler2D uNormal;
 uniform sampler2D uDepth;
-uniform vec2 uProjectionScale;  // projection[0][0], projection[1][1]
+uniform vec2 uProjectionScale;   // projection[0][0], projection[1][1]
+uniform vec2 uProjectionOffset;  // projection[2][0], projection[2][1] (lens shift)
 uniform float uNear;            // metres
 uniform mat3 uViewToEcef;
 uniform vec3 uCameraEcef;       // metres (float precision is plenty for the sky)
@@ -30,7 +31,7 @@ void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     float depth = texelFetch(uDepth, pixel, 0).r;
     vec2 ndc = vUv * 2.0 - 1.0;
-    vec3 directionView = normalize(vec3(ndc / uProjectionScale, -1.0));
+    vec3 directionView = normalize(vec3((ndc + uProjectionOffset) / uProjectionScale, -1.0));
     vec3 directionEcef = normalize(uViewToEcef * directionView);
     vec3 origin = toSphereSpace(uCameraEcef);
     vec3 direction = normalize(toSphereSpace(directionEcef));

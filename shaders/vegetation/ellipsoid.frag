@@ -25,9 +25,11 @@ layout(location = 1) out vec4 outNormal;  // xyz: view-space normal, w: material
 layout(depth_less) out float gl_FragDepth;
 
 void main() {
-    // The pixel's view ray (symmetric perspective) and its crossing with the plane.
+    // The pixel's view ray (perspective, possibly off-axis by a lens shift:
+    // ndc = scale * x / -z - offset) and its crossing with the plane.
     vec2 ndc = gl_FragCoord.xy / uViewport * 2.0 - 1.0;
-    vec3 ray = vec3(ndc.x / uProjection[0][0], ndc.y / uProjection[1][1], -1.0);
+    vec3 ray = vec3((ndc.x + uProjection[2][0]) / uProjection[0][0],
+                    (ndc.y + uProjection[2][1]) / uProjection[1][1], -1.0);
     float across = dot(ray, vPlane.xyz);
     vec3 start = ray * (vPlane.w / max(across, 1e-6));  // view space, on the plane
     vec3 localDirection = vToLocal * start;
