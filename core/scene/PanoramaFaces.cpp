@@ -92,36 +92,89 @@ glm::dvec4 bilinear(const Image<Channel>& image, double x, double y, const Decod
            (fetch(x0, y1) * (1 - fx) + fetch(x1, y1) * fx) * fy;
 }
 
+// Where each output pixel samples: a face and a pixel position in it.
+struct Sample {
+    std::size_t face = 0;
+    glm::dvec2 pixel{0.0};
+};
+
+// Finds the sample of any output pixel from its exact direction (ImageProjection), for
+// every projection; for a cylinder it also tabulates the columns: a column's face and
+// face column are the same on every row (the strips share the cylinder's vertical axis),
+// and its face row is affine in the output row (tan(elevation) is), so two exact
+// look-ups per column give every pixel of it.
+class SampleMap {
+public:
+    SampleMap(const Camera& camera, int width, int height, const std::vector<PanoramaFace>& faces)
+        : faces_(faces), panorama_(camera, width, height) {
+        for (const PanoramaFace& face : faces) {
+            projections_.emplace_back(face.camera, face.width, face.height);
+            forwards_.push_back(-face.camera.axes[2]);
+        }
+        if (camera.projection != CameraProjection::Cylindrical) {
+            return;
+        }
+        for (int column = 0; column < width; ++column) {
+            const Sample first = exact(0, column);
+            const Sample second = exact(1, column);
+            columns_.push_back(
+                {first.face, first.pixel.x, first.pixel.y, second.pixel.y - first.pixel.y});
+        }
+    }
+
+    Sample at(int row, int column) const {
+        if (columns_.empty()) {
+            return exact(row, column);
+        }
+        const Column& c = columns_[std::size_t(column)];
+        return {c.face, glm::dvec2(c.x, c.y0 + row * c.dy)};
+    }
+
+private:
+    struct Column {
+        std::size_t face;
+        double x, y0, dy;
+    };
+
+    Sample exact(int row, int column) const {
+        const glm::dvec3 direction = panorama_.ecefDirection({column + 0.5, row + 0.5});
+        std::size_t best = 0;
+        for (std::size_t i = 1; i < forwards_.size(); ++i) {
+            if (glm::dot(direction, forwards_[i]) > glm::dot(direction, forwards_[best])) {
+                best = i;
+            }
+        }
+        const std::optional<glm::dvec2> pixel =
+            projections_[best].pixelOf(faces_[best].camera.viewRotation() * direction);
+        SYLVA_CHECK(pixel.has_value());  // the most central face always shows the direction
+        return {best, *pixel};
+    }
+
+    const std::vector<PanoramaFace>& faces_;
+    ImageProjection panorama_;
+    std::vector<ImageProjection> projections_;
+    std::vector<glm::dvec3> forwards_;
+    std::vector<Column> columns_;
+};
+
 template <typename Channel, typename Decode, typename Encode>
 Image<Channel> resampleFaces(const Camera& camera, int width, int height,
                              const std::vector<PanoramaFace>& faces,
                              const std::vector<const Image<Channel>*>& images, const Decode& decode,
                              const Encode& encode) {
     SYLVA_CHECK(faces.size() == images.size() && !faces.empty());
-    std::vector<ImageProjection> projections;
-    std::vector<glm::dvec3> forwards;
     for (std::size_t i = 0; i < faces.size(); ++i) {
         SYLVA_CHECK(images[i]->width == faces[i].width && images[i]->height == faces[i].height);
-        projections.emplace_back(faces[i].camera, faces[i].width, faces[i].height);
-        forwards.push_back(-faces[i].camera.axes[2]);
     }
-    const ImageProjection panorama(camera, width, height);
+    const SampleMap samples(camera, width, height, faces);
     Image<Channel> out(width, height);
     WorkerPool::shared().run(
         height,
         [&](int row) {
             for (int column = 0; column < width; ++column) {
-                const glm::dvec3 direction = panorama.ecefDirection({column + 0.5, row + 0.5});
-                std::size_t best = 0;
-                for (std::size_t i = 1; i < forwards.size(); ++i) {
-                    if (glm::dot(direction, forwards[i]) > glm::dot(direction, forwards[best])) {
-                        best = i;
-                    }
-                }
-                const std::optional<glm::dvec2> pixel =
-                    projections[best].pixelOf(faces[best].camera.viewRotation() * direction);
-                SYLVA_CHECK(pixel.has_value());
-                const glm::dvec4 value = bilinear(*images[best], pixel->x, pixel->y, decode);
+                const Sample sample = samples.at(row, column);
+                const glm::dvec4 value =
+                    bilinear(*images[sample.face], sample.pixel.x, sample.pixel.y, decode);
                 Channel* target = out.at(column, row);
                 for (int c = 0; c < 3; ++c) {
                     target[c] = encode(value[c]);

@@ -56,7 +56,7 @@ usage_error "--ao-samples needs a non-negative integer, got ''" \
 
 # --- suite names: every message lists every suite ----------------------------------
 
-suites="dsl, vector, plants, analysis, terrain, tiles, plantlod, turnaround, vegetation"
+suites="dsl, vector, plants, analysis, views, terrain, tiles, plantlod, turnaround, vegetation"
 usage_error "unknown bench suite 'nope' (suites: $suites)" bench nope
 usage_error "bench needs one suite: $suites" bench
 

@@ -17,6 +17,7 @@
 #include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/scene/CameraMatcher.h"
 #include "sylva/core/scene/ImageProjection.h"
+#include "sylva/core/scene/PanoramaFaces.h"
 #include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/render/gl/GlContext.h"
 #include "sylva/render/scene/PanoramaRenderer.h"
@@ -133,14 +134,20 @@ TEST_F(ViewProjection, PlanarWithLensShiftDrawsSurveyedPointsWhereThePinholePred
 }
 
 TEST_F(ViewProjection, CylindricalColumnsDrawSurveyedPointsAtTheirBearings) {
-    // 360° in 12 strips of 30°: markers at strip centres and on strip seams.
+    // 360° in strips of PanoramaFaces::kMaxStripAngle: markers at every strip's centre and
+    // on every seam between two strips.
     const Camera c = camera(45.0, 7.0, 300.0, 10.0, 0.0, CameraProjection::Cylindrical, 360.0);
+    constexpr int kWidth = 720;
+    const int strips = int(std::ceil(2 * kPi / PanoramaFaces::kMaxStripAngle - 1e-9));
+    const double stripPixels = double(kWidth) / strips;
     std::vector<glm::dvec2> pixels;
-    for (int i = 0; i < 12; ++i) {
-        // Even: a strip's centre; odd: the seam between two strips (60 px = 30°).
-        pixels.emplace_back(i % 2 == 0 ? 30.0 + 60.0 * i : 60.0 * i, 75.0 + 8 * (i % 3));
+    for (int i = 0; i < strips; ++i) {
+        pixels.emplace_back(stripPixels * (i + 0.5), 75.0 + 8 * (i % 3));
+        if (i + 1 < strips) {
+            pixels.emplace_back(stripPixels * (i + 1), 90.0 - 8 * (i % 2));
+        }
     }
-    EXPECT_LT(worstOffset(c, 720, 120, pixels, "cylindrical_360"), 0.5);
+    EXPECT_LT(worstOffset(c, kWidth, 120, pixels, "cylindrical_360"), 0.5);
 }
 
 TEST_F(ViewProjection, EquirectangularNearAPoleAndAcrossTheAntimeridian) {

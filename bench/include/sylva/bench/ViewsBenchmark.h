@@ -2,9 +2,10 @@
 // fixture (bench/MarkerFixture: flat ground at 100 m with surveyed markers, atmosphere
 // off, camera 250 m above the ground, tiles warmed by one render first):
 //  - planar_ms_per_mpx: wall milliseconds per megapixel of a planar 53.5° image
-//    (PanoramaRenderer, i.e. SceneRenderer directly), best of `repeats`;
+//    (PanoramaRenderer, i.e. SceneRenderer directly), best of `repeats` (the two
+//    cameras' renders alternate, so load changes hit both alike);
 //  - cylindrical_ms_per_mpx: the same for a 90° cylindrical panorama of the same pixel
-//    size (3 strips rendered and resampled per pixel);
+//    size (2 strips of 45° rendered and resampled per pixel);
 //  - cylindrical_cost_ratio: the ratio of the two (target ≤ 1.5);
 //  - match_ms: one CameraMatcher solve of heading, pitch and roll from 8 control points
 //    (the marker centroids detected in a rendered 640 × 360 "photograph", first guess 3°
@@ -23,7 +24,7 @@ namespace sylva::bench {
 struct ViewsBenchmarkOptions {
     int width = 1280;  // both images
     int height = 406;  // NatureScot's 820 x 260 mm aspect
-    int repeats = 3;
+    int repeats = 5;
 };
 
 struct ViewsBenchmarkResult {

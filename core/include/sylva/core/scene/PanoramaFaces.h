@@ -24,10 +24,11 @@ struct PanoramaFace {
 
 class PanoramaFaces {
 public:
-    // Strips narrower than this (radians) keep the faces' extra area small: the area of
-    // a strip of half-width a over its share of the cylinder is tan(a)/a / cos(a), 1.06
-    // at 30° strips. Measured against wider strips in docs/benchmarks.md ## views.
-    static constexpr double kMaxStripAngle = 30.0 * 3.14159265358979323846 / 180.0;
+    // Strips at most this wide (radians). A strip of half-width a covers tan(a)/a / cos(a)
+    // times its share of the cylinder in pixels (1.06 at 30°, 1.14 at 45°), but every strip
+    // is one more render with its fixed cost: on llvmpipe a 90° panorama in 2 strips of 45°
+    // cost 1.36 × a planar image of its size, in 3 of 30° 1.66 × (docs/benchmarks.md ## views).
+    static constexpr double kMaxStripAngle = 45.0 * 3.14159265358979323846 / 180.0;
     // Extra pixels round each face, so bilinear sampling never leaves it.
     static constexpr int kMargin = 2;
 
