@@ -19,7 +19,13 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 std::string format(const char* pattern, double value) {
     char buffer[64];
     std::snprintf(buffer, sizeof buffer, pattern, value);
-    return buffer;
+    std::string text = buffer;
+    // A value that rounds to zero prints without a sign ("0.00°", not "-0.00°").
+    if (!text.empty() && text[0] == '-' &&
+        text.find_first_of("123456789") > text.find_first_not_of("-0.")) {
+        text.erase(0, 1);
+    }
+    return text;
 }
 
 std::string utcText(double unixSeconds) {

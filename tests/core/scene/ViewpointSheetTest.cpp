@@ -73,6 +73,7 @@ TEST(ViewpointRecord, FieldsEqualTheCamerasValues) {
     EXPECT_NEAR(number(record, "viewing_distance_mm"), 820.0 / (2 * std::tan(26.75 * kDegree)),
                 1e-9);
     EXPECT_EQ(record.find("projection")->text, "planar");
+    EXPECT_EQ(record.find("pitch_deg")->text, "0.00°");  // a level camera, no "-0.00°"
     EXPECT_EQ(record.find("time_utc")->text, "2024-06-21T13:30:00Z");
     const SunDirection sun = SolarPosition::seenFrom(record.find("time_utc") ? 1718976600.0 : 0.0,
                                                      56.5 * kDegree, -4.2 * kDegree);
