@@ -3,7 +3,8 @@
 // generated project of 5,000 lines (500 sources, 20 scenarios, 50 cameras). Suite
 // `vector` measures rasterize (polygons with outlines) and plants (scattering) tiles;
 // `plants` the plant generator, importer and billboard-cloud builder; `analysis` the
-// bare-earth ZTV against GDAL's viewshed. Their bodies are
+// bare-earth ZTV against GDAL's viewshed; `views` planar and cylindrical renders and
+// camera matching (bench/ViewsBenchmark.h). Their bodies are
 // in sylva_bench (bench/DslBenchmark.h, VectorBenchmark.h, PlantsBenchmark.h); the
 // suites with options of their own have their own commands (runTerrainBench, ...).
 #include <cstdio>
@@ -20,6 +21,7 @@
 #include "sylva/bench/DslBenchmark.h"
 #include "sylva/bench/PlantsBenchmark.h"
 #include "sylva/bench/VectorBenchmark.h"
+#include "sylva/bench/ViewsBenchmark.h"
 
 namespace sylva::app {
 
@@ -64,6 +66,7 @@ const Suite kSuites[] = {
      [](bool json) { return printMetrics("plants", bench::runPlantsBenchmark({}), json); }},
     {"analysis",
      [](bool json) { return printMetrics("analysis", bench::runAnalysisBenchmark({}), json); }},
+    {"views", [](bool json) { return printMetrics("views", bench::runViewsBenchmark({}), json); }},
 };
 
 // Suites with options and structured output of their own take over the command line.

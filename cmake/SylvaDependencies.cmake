@@ -24,6 +24,8 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(GEOGRAPHICLIB REQUIRED IMPORTED_TARGET geographiclib)
 # The disk tile cache compresses entries with zstd (libzstd-dev; pkg-config).
 pkg_check_modules(ZSTD REQUIRED IMPORTED_TARGET libzstd)
+# Viewpoint sheets (core/scene/ViewpointSheet): PDF and PNG pages drawn with cairo.
+pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
 
 # Plants (sylva_core): tinygltf is used header-only (TINYGLTF_IMPLEMENTATION in
 # core/plants/TinyGltf.cpp); its image code is the packaged stb (libstb-dev), whose

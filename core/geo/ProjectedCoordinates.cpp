@@ -16,9 +16,11 @@ struct Transformation {
     std::string error;
 };
 
-const Transformation& transformationFor(std::string_view crs) {
+// From `crs` to WGS84 longitude/latitude, or back (`toProjected`).
+const Transformation& transformationFor(std::string_view crs, bool toProjected = false) {
     thread_local std::map<std::string, Transformation, std::less<>> cache;
-    if (auto it = cache.find(crs); it != cache.end()) {
+    const std::string key = (toProjected ? "to " : "from ") + std::string(crs);
+    if (auto it = cache.find(key); it != cache.end()) {
         return it->second;
     }
     Transformation result;
@@ -32,12 +34,13 @@ const Transformation& transformationFor(std::string_view crs) {
     } else if (target.importFromEPSG(4326) != OGRERR_NONE) {
         result.error = "cannot set up WGS84 (EPSG:4326): is the PROJ database installed?";
     } else {
-        result.transform.reset(OGRCreateCoordinateTransformation(&source, &target));
+        result.transform.reset(toProjected ? OGRCreateCoordinateTransformation(&target, &source)
+                                           : OGRCreateCoordinateTransformation(&source, &target));
         if (!result.transform) {
             result.error = "cannot convert from '" + text + "' to WGS84";
         }
     }
-    return cache.emplace(text, std::move(result)).first->second;
+    return cache.emplace(key, std::move(result)).first->second;
 }
 
 }  // namespace
@@ -55,6 +58,21 @@ Result<GeodeticPoint> ProjectedCoordinates::toGeodetic(std::string_view crs, dou
     }
     constexpr double kDegree = std::numbers::pi / 180.0;
     return GeodeticPoint{latitude * kDegree, longitude * kDegree};
+}
+
+Result<glm::dvec2> ProjectedCoordinates::fromGeodetic(std::string_view crs, double latitude,
+                                                      double longitude) {
+    const Transformation& transformation = transformationFor(crs, true);
+    if (!transformation.transform) {
+        return Error{transformation.error};
+    }
+    constexpr double kDegree = std::numbers::pi / 180.0;
+    double x = longitude / kDegree, y = latitude / kDegree;
+    if (!transformation.transform->Transform(1, &x, &y) || !std::isfinite(x) || !std::isfinite(y)) {
+        return Error{"cannot convert (" + std::to_string(latitude / kDegree) + "°, " +
+                     std::to_string(longitude / kDegree) + "°) to '" + std::string(crs) + "'"};
+    }
+    return glm::dvec2(x, y);
 }
 
 Status ProjectedCoordinates::validate(std::string_view crs) {

@@ -561,24 +561,57 @@ KindSchema scenarioBlock() {
 
 KindSchema cameraBlock() {
     AttributeSchema position = simple("position", ValueType::Geo, std::nullopt,
-                                      "geo(lat, lon[, height above the ellipsoid]).");
+                                      "geo(lat, lon[, height above the ellipsoid]) or [x, y[, "
+                                      "height]] in the project CRS.");
     position.required = true;
+    AttributeSchema body;
+    body.name = "body";
+    body.type = ValueType::Word;
+    body.words = {"full_frame", "aps_c", "aps_c_canon", "micro_four_thirds", "medium_format"};
+    body.doc =
+        "A named camera body for focal_length: full_frame 36 x 24 mm, aps_c 23.5 x 15.6 "
+        "mm, aps_c_canon 22.3 x 14.9 mm, micro_four_thirds 17.3 x 13 mm, medium_format "
+        "43.8 x 32.9 mm.";
     return {"camera",
             "",
             PortType::None,
             "A viewpoint. Height comes from eye_height (above the terrain) if given, otherwise "
-            "from the third component of position (above the ellipsoid).",
+            "from the third component of position (above the ellipsoid), otherwise 1.5 m above "
+            "the terrain. The field of view is one of fov (vertical), horizontal_fov or "
+            "focal_length (on a sensor or body; full frame when neither is given); the vertical "
+            "field of the image follows from its aspect (docs/verified-views.md).",
             {position,
              optionalNumber("eye_height", Dimension::Length, 0.01, 1e8,
-                            "Height above the terrain surface, in metres."),
+                            "Height above the terrain surface, in metres (default 1.5 m when "
+                            "position has no height)."),
              number("heading", Dimension::Angle, 0, -360 * kDegree, 360 * kDegree,
                     "Compass direction of view, clockwise from north."),
              number("pitch", Dimension::Angle, 0, -90 * kDegree, 90 * kDegree,
-                    "Elevation of the view direction above the local horizon."),
+                    "Elevation of the view direction above the local horizon (planar only)."),
              number("roll", Dimension::Angle, 0, -180 * kDegree, 180 * kDegree,
-                    "Rotation about the view direction."),
-             number("fov", Dimension::Angle, 60 * kDegree, 1 * kDegree, 170 * kDegree,
-                    "Vertical field of view."),
+                    "Rotation about the view direction (planar only)."),
+             optionalNumber("fov", Dimension::Angle, 1 * kDegree, 170 * kDegree,
+                            "Vertical field of view of a planar image (default 60°)."),
+             optionalNumber("horizontal_fov", Dimension::Angle, 1 * kDegree, 360 * kDegree,
+                            "Horizontal field of view: planar up to 170°, cylindrical up to 360°."),
+             optionalNumber("focal_length", Dimension::Length, 1e-4, 10.0,
+                            "Lens focal length, e.g. 50mm; with sensor or body it gives the "
+                            "horizontal field 2 atan(sensor width / (2 focal length))."),
+             listOf("sensor", ValueType::Number, Dimension::Length, false,
+                    "Sensor [width, height], e.g. [36mm, 24mm] (default: full frame)."),
+             body,
+             wordChoice("projection", {"planar", "cylindrical", "equirectangular"}, "planar",
+                        "planar (a photograph), cylindrical (columns are bearings at equal angle "
+                        "steps; needs horizontal_fov or focal_length) or equirectangular "
+                        "(360° x 180°)."),
+             listOf("shift", ValueType::Number, Dimension::Ratio, false,
+                    "Lens shift [x, y] as fractions of the image width and height (+y raises "
+                    "the view window); cylindrical: [0, y] only."),
+             listOf("output_size", ValueType::Number, Dimension::Length, false,
+                    "Printed image size [width, height], e.g. [820mm, 260mm]; with dpi it sets "
+                    "this camera's pixel size."),
+             optionalNumber("dpi", Dimension::None, 1, 10000,
+                            "Print resolution in dots per inch (with output_size)."),
              simple("look_at", ValueType::Geo, std::nullopt,
                     "A point to look at; replaces heading and pitch.")}};
 }
@@ -599,7 +632,14 @@ KindSchema viewsBlock() {
                            "Cameras to render (a views block needs cameras or paths)."),
              referenceList("scenarios", "scenario", PortType::None, false,
                            "Scenarios to render; the first scenario when absent."),
-             output}};
+             output,
+             simple("sheet", ValueType::Bool, boolean(false),
+                    "Also write a viewpoint sheet per camera image: NAME.sheet.pdf and "
+                    "NAME.sheet.png (the image at the camera's output_size, metadata below) and "
+                    "NAME.json (the same metadata); the cameras need output_size and dpi."),
+             listOf("sheet_size", ValueType::Number, Dimension::Length, false,
+                    "Sheet page [width, height], e.g. [841mm, 297mm]; default: the image plus "
+                    "margins and the metadata block.")}};
 }
 
 KindSchema renderBlock() {

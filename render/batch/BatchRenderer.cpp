@@ -11,6 +11,8 @@
 #include "sylva/render/batch/ImageOutput.h"
 #include "sylva/render/batch/JobView.h"
 #include "sylva/render/batch/SeriesAssembler.h"
+#include "sylva/render/batch/ViewpointOutput.h"
+#include "sylva/render/scene/PanoramaRenderer.h"
 
 namespace sylva::render {
 namespace {
@@ -225,14 +227,33 @@ Status BatchRenderer::renderImage(BatchRun& run, const RenderJob& job) {
         return {};
     }
     const std::string& what = view.value().what;
-    Result<Image> image = renderer.value()->render(
-        layers, tiles, view.value().camera, view.value().settingsFor(scenarioSetup.value(), job));
+    const Camera& camera = view.value().camera;
+    Result<bool> sheet = ViewpointOutput::wantsSheet(plan, job, camera);
+    if (!sheet) {
+        run.fail(job, sheet.error().message);
+        return {};
+    }
+    Result<Image> image =
+        PanoramaRenderer::render(*renderer.value(), layers, tiles, camera,
+                                 view.value().settingsFor(scenarioSetup.value(), job));
     if (!image) {
         run.fail(job, what + ": " + image.error().message);
         return {};
     }
-    if (Status written = ImageOutput::write(job.output, image.value(), plan.metadataFor(job));
-        !written) {
+    ImageMetadata metadata = plan.metadataFor(job);
+    const std::optional<ViewpointRecord> record =
+        ViewpointOutput::record(plan, job, camera, image.value().width, image.value().height);
+    if (record) {
+        record->addTo(metadata);
+    }
+    if (sheet.value()) {  // before the image, which moves its radiance out
+        if (Status written = ViewpointOutput::writeSheet(plan, job, camera, image.value(), *record);
+            !written) {
+            run.fail(job, written.error().message);
+            return {};
+        }
+    }
+    if (Status written = ImageOutput::write(job.output, image.value(), metadata); !written) {
         const std::size_t bytes = static_cast<std::size_t>(image.value().width) *
                                       static_cast<std::size_t>(image.value().height) * 8 +
                                   (64u << 10);

@@ -59,6 +59,10 @@ RenderSettings JobView::settingsFor(const RenderSetup& setup, const RenderJob& j
     RenderSettings settings = setup.settings;
     settings.sunDirection = sun;
     settings.linearOutput = ImageWriter::isExr(job.output);
+    if (camera.print.valid()) {  // a print format fixes this camera's pixel size
+        settings.width = camera.print.pixelsWide();
+        settings.height = camera.print.pixelsHigh();
+    }
     return settings;
 }
 

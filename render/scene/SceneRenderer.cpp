@@ -53,11 +53,16 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const ShaderLibrary
 
 SceneRenderer::~SceneRenderer() = default;
 
-glm::dmat4 SceneRenderer::projection(double verticalFov, double aspect, double near) {
+glm::dmat4 SceneRenderer::projection(double verticalFov, double aspect, double near,
+                                     const glm::dvec2& lensShift) {
     const double f = 1.0 / std::tan(verticalFov / 2);
     glm::dmat4 p(0.0);
     p[0][0] = f / aspect;
     p[1][1] = f;
+    // Off-axis by the lens shift: ndc = scale * x / -z - 2 shift, so the optical axis
+    // lands at ndc -2 shift (ImageProjection's principal point).
+    p[2][0] = 2.0 * lensShift.x;
+    p[2][1] = 2.0 * lensShift.y;
     p[2][3] = -1.0;  // w = -z
     p[3][2] = near;  // z = near, so depth = near / distance after the divide
     return p;
@@ -250,7 +255,7 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     }
     near_ = std::clamp(0.3 * statistics_.heightAboveTerrain, 0.02, 1.0e4);
     const glm::dmat4 projection = SceneRenderer::projection(
-        camera.verticalFov, double(settings.width) / settings.height, near_);
+        camera.verticalFov, double(settings.width) / settings.height, near_, camera.lensShift);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     if (settings.samples == 1) {
         if (Status drawn = drawSample(camera, projection, levels, batches.value(), settings, true);

@@ -286,8 +286,11 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches,
     selection.closeUpMesh = settings.closeUpMesh;
     selection.method = settings.method;
     selection.near = near;
-    LodSelector::setFrustum(selection, camera.verticalFov,
-                            double(pixelsWide) / std::max(pixelsHigh, 1));
+    // The symmetric frustum that holds the (possibly lens-shifted) image window.
+    const double halfWidth =
+        (1.0 + std::abs(projection[2][0])) / projection[0][0];  // tangent, right or left
+    const double halfHeight = (1.0 + std::abs(projection[2][1])) / projection[1][1];
+    LodSelector::setFrustum(selection, 2.0 * std::atan(halfHeight), halfWidth / halfHeight);
 
     const auto selectStart = std::chrono::steady_clock::now();
     selector_.select(batches, lods_, camera, selection, selection_);

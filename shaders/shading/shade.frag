@@ -13,8 +13,8 @@ layout(location = 1) out vec4 outRadiance;  // linear, after exposure (EXR outpu
 uniform sampler2D uAlbedo;
 uniform sampler2D uNormal;
 uniform sampler2D uDepth;
-uniform vec2 uProjectionScale;  // projection[0][0], projection[1][1]
-uniform vec2 uProjectionOffset; // projection[2][0], projection[2][1]: the sub-pixel sample shift
+uniform vec2 uProjectionScale;   // projection[0][0], projection[1][1]
+uniform vec2 uProjectionOffset;  // projection[2][0], projection[2][1]: lens shift + sub-pixel sample shift
 uniform float uNear;            // metres
 uniform mat3 uViewToEcef;
 uniform vec3 uCameraEcef;       // metres (float precision is plenty for the sky)

@@ -25,10 +25,12 @@ layout(location = 1) out vec4 outNormal;  // xyz: view-space normal, w: material
 layout(depth_less) out float gl_FragDepth;
 
 void main() {
-    // The pixel's view ray and its crossing with the plane. uProjection[2].xy is the
-    // sub-pixel shift of an anti-aliasing sample (SampleAccumulator), 0 otherwise.
-    vec2 ndc = gl_FragCoord.xy / uViewport * 2.0 - 1.0 + uProjection[2].xy;
-    vec3 ray = vec3(ndc.x / uProjection[0][0], ndc.y / uProjection[1][1], -1.0);
+    // The pixel's view ray (perspective, possibly off-axis: ndc = scale * x / -z - offset,
+    // the offset uProjection[2].xy holding a lens shift and the sub-pixel shift of an
+    // anti-aliasing sample) and its crossing with the plane.
+    vec2 ndc = gl_FragCoord.xy / uViewport * 2.0 - 1.0;
+    vec3 ray = vec3((ndc.x + uProjection[2][0]) / uProjection[0][0],
+                    (ndc.y + uProjection[2][1]) / uProjection[1][1], -1.0);
     float across = dot(ray, vPlane.xyz);
     vec3 start = ray * (vPlane.w / max(across, 1e-6));  // view space, on the plane
     vec3 localDirection = vToLocal * start;

@@ -57,7 +57,7 @@ usage_error "--ao-samples needs a non-negative integer, got ''" \
 
 # --- suite names: every message lists every suite ----------------------------------
 
-suites="dsl, vector, plants, analysis, terrain, tiles, plantlod, turnaround, vegetation, shading, objects, viewer"
+suites="dsl, vector, plants, analysis, views, terrain, tiles, plantlod, turnaround, vegetation, shading, objects, viewer"
 usage_error "unknown bench suite 'nope' (suites: $suites)" bench nope
 usage_error "bench needs one suite: $suites" bench
 usage_error "--size expects WIDTHxHEIGHT within 16..16384" bench shading --size 10x10

@@ -403,7 +403,7 @@ TEST(DiagnosticGolden, MissingRequired) {
   |
 1 | camera ground { heading = 20deg }
   |        ^^^^^^ camera 'ground' needs 'position'
-  = help: position: geo(lat, lon[, height above the ellipsoid]).
+  = help: position: geo(lat, lon[, height above the ellipsoid]) or [x, y[, height]] in the project CRS.
 )SYLVA");
 }
 

@@ -65,7 +65,8 @@ TEST(Loader, DemoProjectLoadsClean) {
     EXPECT_FALSE(ground->find("position")->value.get<GeoPosition>()->height.has_value());
     EXPECT_DOUBLE_EQ(quantityOf(*ground, "eye_height"), 1.7);
     EXPECT_NEAR(quantityOf(*ground, "pitch"), -2 * kDegree, 1e-12);
-    EXPECT_NEAR(quantityOf(*ground, "fov"), 60 * kDegree, 1e-12);
+    // No field of view written: none in the model (Camera::fromBlock uses 60° vertical).
+    EXPECT_EQ(ground->find("fov"), nullptr);
 
     const ValueList* resolution = model.render.find("resolution")->value.get<ValueList>();
     ASSERT_NE(resolution, nullptr);

@@ -346,5 +346,64 @@ TEST(VideoEncoder, FindsProgramsOnPathOnly) {
     EXPECT_TRUE(VideoEncoder::findOnPath("sylva-no-such-program").empty());
 }
 
+// Verified views from the project file (issue 18): a 90° cylindrical camera with a print
+// format renders at the print's pixel size, carries its viewpoint record in the PNG, and
+// `sheet = true` writes the PDF/PNG sheet and the JSON sidecar beside it. A sheet for a
+// camera without a print format fails that job, located at `sheet`, writing nothing.
+TEST(BatchRenderer, CylindricalViewpointWithSheetFromTheProjectFile) {
+    const std::string base =
+        "source height : constant { height = 200m }\n"
+        "source colour : constant { kind = image; color = #4a7a3a }\n"
+        "scenario today { layers = [@height, @colour] }\n"
+        "camera vp1 { position = geo(10deg, 20deg); eye_height = 50m; heading = 90deg\n"
+        "    projection = cylindrical; horizontal_fov = 90deg\n"
+        "    output_size = [100mm, 30mm]; dpi = 50 }\n"
+        "camera plain { position = geo(10deg, 20deg, 3km); pitch = -20deg }\n"
+        "render { resolution = [32px, 18px]; atmosphere = false }\n";
+    BatchRenderer batch;
+    ASSERT_TRUE(batch.setProject(
+        load(base + "views pack { cameras = [@vp1]; output = \"{camera}.png\"; sheet = true }\n")));
+    BatchSelection selection;
+    selection.outputFolder = scratch("sheet");
+    Recorder recorder;
+    const BatchSummary summary = runSeries(batch, selection, recorder);
+    EXPECT_EQ(summary.failed, 0);
+    ASSERT_TRUE(recorder.errors.empty()) << recorder.errors.front();
+    const std::set<std::string> files = filesBelow(selection.outputFolder);
+    for (const char* file : {"vp1.png", "vp1.sheet.pdf", "vp1.sheet.png", "vp1.json"}) {
+        EXPECT_TRUE(files.count(file)) << file;
+    }
+    int width = 0, height = 0;
+    readPixels(selection.outputFolder / "vp1.png", width, height);
+    EXPECT_EQ(width, 197);  // 100 mm at 50 dpi
+    EXPECT_EQ(height, 59);  // 30 mm at 50 dpi
+    Result<ImageMetadata> metadata = ImageWriter::readMetadata(
+        selection.outputFolder / "vp1.png",
+        {"sylva:viewpoint:horizontal_fov_deg", "sylva:viewpoint:viewing_distance_mm",
+         "sylva:viewpoint:eye_height_m"});
+    ASSERT_TRUE(metadata);
+    ASSERT_TRUE(metadata->find("sylva:viewpoint:horizontal_fov_deg"));
+    EXPECT_EQ(*metadata->find("sylva:viewpoint:horizontal_fov_deg"), "90.00°");
+    EXPECT_EQ(*metadata->find("sylva:viewpoint:viewing_distance_mm"), "64 mm");  // 100 / (π/2)
+    EXPECT_EQ(*metadata->find("sylva:viewpoint:eye_height_m"), "50.00 m");
+    std::ifstream json(selection.outputFolder / "vp1.json");
+    const std::string text((std::istreambuf_iterator<char>(json)), {});
+    EXPECT_NE(text.find("\"projection\": \"cylindrical\""), std::string::npos) << text;
+
+    BatchRenderer bad;
+    ASSERT_TRUE(
+        bad.setProject(load(base + "views pack {\n    cameras = [@plain]\n    sheet = true\n}\n")));
+    selection.outputFolder = scratch("sheet_without_print");
+    Recorder failing;
+    const BatchSummary failed = runSeries(bad, selection, failing);
+    EXPECT_EQ(failed.failed, 1);
+    ASSERT_EQ(failing.errors.size(), 1u);
+    EXPECT_NE(failing.errors[0].find("series.sylva:11:13: views 'pack': a viewpoint sheet needs "
+                                     "the print format of camera 'plain'"),
+              std::string::npos)
+        << failing.errors[0];
+    EXPECT_FALSE(std::filesystem::exists(selection.outputFolder / "plain.png"));
+}
+
 }  // namespace
 }  // namespace sylva::render

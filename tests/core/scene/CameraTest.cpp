@@ -130,9 +130,17 @@ TEST(Camera, MissingHeightOrPositionIsAnError) {
     Result<Camera> noHeight =
         Camera::fromBlock(camera({{"position", geo(10, 10, std::nullopt)}}), noTerrain);
     ASSERT_FALSE(noHeight);
+    // Without a height the viewpoint stands 1.5 m above the terrain, which it must find.
     EXPECT_EQ(noHeight.error().message,
-              "cam.sylva:4:17: camera 'cam': the camera needs a height: write geo(lat, lon, "
-              "height) or set eye_height");
+              "cam.sylva:4:17: camera 'cam': cannot find the terrain height: no terrain in this "
+              "test");
+    Result<Camera> standing =
+        Camera::fromBlock(camera({{"position", geo(10, 10, std::nullopt)}}),
+                          [](double, double) -> Result<double> { return 80.0; });
+    ASSERT_TRUE(standing) << standing.error().message;
+    EXPECT_DOUBLE_EQ(standing->geodetic.height, 81.5);
+    EXPECT_DOUBLE_EQ(standing->eyeHeight, 1.5);
+    EXPECT_DOUBLE_EQ(standing->groundHeight, 80.0);
     Result<Camera> noPosition =
         Camera::fromBlock(camera({{"fov", quantity(1.0, Dimension::Angle)}}), noTerrain);
     ASSERT_FALSE(noPosition);

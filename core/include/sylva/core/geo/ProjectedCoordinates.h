@@ -5,6 +5,8 @@
 
 #include <string_view>
 
+#include <glm/glm.hpp>
+
 #include "sylva/core/base/Result.h"
 
 namespace sylva {
@@ -20,6 +22,8 @@ public:
     // (the caller adds the location). Any CRS definition GDAL accepts: "EPSG:n", WKT,
     // PROJ strings. Thread-safe; transformations are cached per thread.
     static Result<GeodeticPoint> toGeodetic(std::string_view crs, double x, double y);
+    // The inverse: (x, y) in `crs` units of WGS84 (latitude, longitude) radians.
+    static Result<glm::dvec2> fromGeodetic(std::string_view crs, double latitude, double longitude);
     // Checks that `crs` is a known, convertible coordinate reference system.
     static Status validate(std::string_view crs);
 };

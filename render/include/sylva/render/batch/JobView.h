@@ -37,7 +37,7 @@ struct JobView {
                                   const RenderSetup& setup, const CameraPath* path);
 
     // The setup's settings with this view's sun; linear radiance is read back when the
-    // job writes EXR.
+    // job writes EXR; a camera with a print format (output_size, dpi) sets the image size.
     RenderSettings settingsFor(const RenderSetup& setup, const RenderJob& job) const;
 };
 

@@ -98,8 +98,10 @@ public:
     Result<Image> render(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
                          const RenderSettings& settings);
 
-    // Reversed-Z perspective with an infinite far plane (depth = near / distance).
-    static glm::dmat4 projection(double verticalFov, double aspect, double near);
+    // Reversed-Z perspective with an infinite far plane (depth = near / distance),
+    // off-axis by `lensShift` (fractions of the image width and height, Camera::lensShift).
+    static glm::dmat4 projection(double verticalFov, double aspect, double near,
+                                 const glm::dvec2& lensShift = glm::dvec2(0.0));
 
     const RenderStatistics& statistics() const { return statistics_; }
     // Reversed-Z depth of the last render (0 = nothing drawn), rows top to bottom; and
