@@ -109,7 +109,7 @@ TerrainLayers MarkerFixture::layers() const {
     if (!colour) {
         colour = std::make_unique<MarkerColour>(markers_);
     }
-    return TerrainLayers{elevation_.get(), colour.get(), normals_.get(), {}};
+    return TerrainLayers{elevation_.get(), colour.get(), normals_.get(), {}, {}};
 }
 
 std::optional<glm::dvec2> MarkerFixture::centroid(const RgbaImage& image,

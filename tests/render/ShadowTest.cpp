@@ -258,7 +258,7 @@ TEST_F(ShadowTest, PoleShadowLengthIsHeightOverTangentOfElevation) {
         settings.linearOutput = true;
         settings.sunDirection = sunAt(foot, elevation, 90 * kDegree);  // sun in the east
         settings.shadowCasters = {&pole};
-        const Image image = render({flat_, nullptr, flatNormals_, {}}, camera, settings);
+        const Image image = render({flat_, nullptr, flatNormals_, {}, {}}, camera, settings);
         ASSERT_EQ(image.radiance.size(), std::size_t(width) * rows * 4);
         ASSERT_GT(pole.draws, 0);
         const auto luminance = [&](const glm::dvec2& p) {  // bilinear, pixel centres at +0.5
@@ -372,13 +372,13 @@ TEST_F(ShadowTest, OlindaTerrainShadowsAgreeWithCpuRayMarch) {
     const glm::dvec3 sun = sunAt(camera.geodetic, 5.0 * kDegree, 290 * kDegree);
     settings.sunDirection = sun;
     Result<Image> shadowed =
-        renderer_->render({dem.get(), nullptr, &normals, {}}, evaluator, camera, settings);
+        renderer_->render({dem.get(), nullptr, &normals, {}, {}}, evaluator, camera, settings);
     ASSERT_TRUE(shadowed) << shadowed.error().message;
     const std::vector<float> depth = renderer_->depth();
     const double near = renderer_->near();
     settings.shadows.enabled = false;
     Result<Image> lit =
-        renderer_->render({dem.get(), nullptr, &normals, {}}, evaluator, camera, settings);
+        renderer_->render({dem.get(), nullptr, &normals, {}, {}}, evaluator, camera, settings);
     ASSERT_TRUE(lit) << lit.error().message;
     // The heightfield as the renderer draws it: the ring level whose annulus holds the
     // point (level i covers π 2^-(i+1) .. π 2^-i radians around the nadir), its pyramid
@@ -490,7 +490,7 @@ TEST_F(ShadowTest, GoldenHillsAtThreeSunElevations) {
         settings.atmosphere = false;  // shadows, not haze (the atmosphere has goldens of its own)
         settings.exposure = 0.35;
         settings.sunDirection = sunAt(camera.geodetic, elevation * kDegree, 250 * kDegree);
-        const Image image = render({hills_, nullptr, hillNormals_, {}}, camera, settings);
+        const Image image = render({hills_, nullptr, hillNormals_, {}, {}}, camera, settings);
         golden::checkGolden("shadows_hills_sun" + std::to_string(elevation), image.width,
                             image.height, image.pixels);
     }
