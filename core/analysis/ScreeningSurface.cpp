@@ -11,6 +11,8 @@
 #include <numeric>
 #include <vector>
 
+#include "sylva/core/sources/GdalDatasetPool.h"
+
 namespace sylva {
 
 namespace {
@@ -44,6 +46,7 @@ bool numericField(OGRFieldType type) {
 // The layer's polygons with their heights, reprojected to the grid's CRS.
 Result<std::vector<Footprint>> readFootprints(const ScreenLayer& layer,
                                               const std::string& gridWkt) {
+    GdalDatasetPool::registerDrivers();  // a process may reach here before any other GDAL use
     CPLErrorReset();
     DatasetHandle dataset(GDALOpenEx(layer.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr,
                                      nullptr, nullptr));
