@@ -57,7 +57,7 @@ check "fmt usage" 2 "$SYLVA" fmt
 
 check "doc list" 0 "$SYLVA" doc
 check "doc kind" 0 "$SYLVA" doc camera
-contains "doc kind" "$SCRATCH/out" "fov : angle = 60deg"
+contains "doc kind" "$SCRATCH/out" "fov : angle = optional  [1deg .. 170deg]"
 check "doc unknown" 1 "$SYLVA" doc camra
 contains "doc unknown" "$SCRATCH/err" "did you mean 'camera'?"
 check "doc markdown" 0 "$SYLVA" doc --markdown
