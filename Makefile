@@ -123,9 +123,12 @@ asan:
 	  "-DCMAKE_EXE_LINKER_FLAGS=$(ASAN_FLAGS)" "-DCMAKE_SHARED_LINKER_FLAGS=$(ASAN_FLAGS)" $(CMAKE_ARGS)
 	cmake --build $(ASAN_DIR) -j$(JOBS) --target sylva_core_tests sylva_dsl_tests
 	ASAN_OPTIONS="halt_on_error=1 detect_leaks=1 abort_on_error=0" \
+	  LSAN_OPTIONS="suppressions=$(CURDIR)/tests/sanitizers/lsan.supp print_suppressions=0" \
 	  UBSAN_OPTIONS="halt_on_error=1 print_stacktrace=1" \
 	  $(ASAN_DIR)/tests/sylva_core_tests --gtest_filter='$(ASAN_TESTS)'
-	ASAN_OPTIONS="halt_on_error=1 detect_leaks=1" UBSAN_OPTIONS="halt_on_error=1 print_stacktrace=1" \
+	ASAN_OPTIONS="halt_on_error=1 detect_leaks=1" \
+	  LSAN_OPTIONS="suppressions=$(CURDIR)/tests/sanitizers/lsan.supp print_suppressions=0" \
+	  UBSAN_OPTIONS="halt_on_error=1 print_stacktrace=1" \
 	  $(ASAN_DIR)/tests/sylva_dsl_tests
 
 # libFuzzer on the file loaders (tests/fuzz): each target in turn, niced, for FUZZ_SECONDS,
