@@ -418,30 +418,16 @@ Result<BuildingsParameters> readParameters(const BlockReader& reader) {
 }  // namespace
 
 Result<std::unique_ptr<Source>> BuildingsSource::create(const SourceBuildContext& context) {
-    const BlockReader& reader = context.reader;
-    Result<const Source*> features = context.input("features", true);
-    if (!features) {
-        return features.error();
+    Result<MeshInputs> inputs = readMeshInputs(context);
+    if (!inputs) {
+        return inputs.error();
     }
-    const FeatureSource* featureSource = FeatureSource::from(features.value());
-    if (featureSource == nullptr) {
-        return Error{reader.where("features") + "'features' must be a features source"};
-    }
-    Result<const Source*> elevation = context.input("elevation", true);
-    if (!elevation) {
-        return elevation.error();
-    }
-    if (elevation.value()->output() != PortType::Elevation) {
-        return Error{reader.where("elevation") + "'elevation' must be an elevation, but source '" +
-                     elevation.value()->name() + "' gives " +
-                     portTypeName(elevation.value()->output())};
-    }
-    Result<BuildingsParameters> parameters = readParameters(reader);
+    Result<BuildingsParameters> parameters = readParameters(context.reader);
     if (!parameters) {
         return parameters.error();
     }
     return std::unique_ptr<Source>(std::make_unique<BuildingsSource>(
-        context.block.name, featureSource, elevation.value(), std::move(parameters.value())));
+        context.block.name, inputs->features, inputs->elevation, std::move(parameters.value())));
 }
 
 }  // namespace sylva

@@ -4,7 +4,33 @@
 #include <cmath>
 #include <numbers>
 
+#include "sylva/core/sources/vector/FeatureSource.h"
+
 namespace sylva {
+
+Result<MeshInputs> readMeshInputs(const SourceBuildContext& context) {
+    const BlockReader& reader = context.reader;
+    Result<const Source*> features = context.input("features", true);
+    if (!features) {
+        return features.error();
+    }
+    MeshInputs inputs;
+    inputs.features = FeatureSource::from(features.value());
+    if (inputs.features == nullptr) {
+        return Error{reader.where("features") + "'features' must be a features source"};
+    }
+    Result<const Source*> elevation = context.input("elevation", true);
+    if (!elevation) {
+        return elevation.error();
+    }
+    if (elevation.value()->output() != PortType::Elevation) {
+        return Error{reader.where("elevation") + "'elevation' must be an elevation, but source '" +
+                     elevation.value()->name() + "' gives " +
+                     portTypeName(elevation.value()->output())};
+    }
+    inputs.elevation = elevation.value();
+    return inputs;
+}
 
 MeshSource::MeshSource(std::string name, std::string kind)
     : Source(std::move(name), std::move(kind), PortType::Meshes, 0) {}

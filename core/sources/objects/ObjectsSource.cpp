@@ -378,30 +378,16 @@ Result<ObjectsParameters> readParameters(const SourceBuildContext& context) {
 }  // namespace
 
 Result<std::unique_ptr<Source>> ObjectsSource::create(const SourceBuildContext& context) {
-    const BlockReader& reader = context.reader;
-    Result<const Source*> features = context.input("features", true);
-    if (!features) {
-        return features.error();
-    }
-    const FeatureSource* featureSource = FeatureSource::from(features.value());
-    if (featureSource == nullptr) {
-        return Error{reader.where("features") + "'features' must be a features source"};
-    }
-    Result<const Source*> elevation = context.input("elevation", true);
-    if (!elevation) {
-        return elevation.error();
-    }
-    if (elevation.value()->output() != PortType::Elevation) {
-        return Error{reader.where("elevation") + "'elevation' must be an elevation, but source '" +
-                     elevation.value()->name() + "' gives " +
-                     portTypeName(elevation.value()->output())};
+    Result<MeshInputs> inputs = readMeshInputs(context);
+    if (!inputs) {
+        return inputs.error();
     }
     Result<ObjectsParameters> parameters = readParameters(context);
     if (!parameters) {
         return parameters.error();
     }
     return std::unique_ptr<Source>(std::make_unique<ObjectsSource>(
-        context.block.name, featureSource, elevation.value(), std::move(parameters.value())));
+        context.block.name, inputs->features, inputs->elevation, std::move(parameters.value())));
 }
 
 }  // namespace sylva

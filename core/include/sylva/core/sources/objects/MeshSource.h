@@ -17,11 +17,24 @@
 #include <memory>
 #include <string>
 
+#include "sylva/core/base/Result.h"
 #include "sylva/core/sources/Source.h"
+#include "sylva/core/sources/SourceBuildContext.h"
 #include "sylva/core/sources/objects/MeshTile.h"
 #include "sylva/core/sources/vector/FeatureCollection.h"
 
 namespace sylva {
+
+class FeatureSource;
+
+// The two inputs every mesh kind reads: `features` (a features source) and `elevation`
+// (an elevation source, for the ground under each feature). Fails with the block's
+// location when either is missing or of another kind.
+struct MeshInputs {
+    const FeatureSource* features = nullptr;
+    const Source* elevation = nullptr;
+};
+Result<MeshInputs> readMeshInputs(const SourceBuildContext& context);
 
 class MeshSource : public Source {
 public:
