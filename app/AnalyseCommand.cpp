@@ -184,6 +184,11 @@ std::optional<nlohmann::ordered_json> runStudy(const ZtvStudy& study,
     }
     std::fprintf(stderr, "ztv '%s': %d x %d cells of %.1f m, %zu target(s)\n", study.name.c_str(),
                  study.grid.width, study.grid.height, study.grid.cellWidth, study.targets.size());
+    const std::size_t firstProposal = study.targets.size() - study.proposal.size();
+    for (std::size_t i = 0; i < study.proposal.size(); ++i)
+        std::fprintf(stderr, "ztv '%s': target %zu: %s, top %.1f m above its base\n",
+                     study.name.c_str(), firstProposal + i + 1, study.proposal[i].label.c_str(),
+                     study.targets[firstProposal + i].height);
     std::optional<ScreeningSurface> screened;
     if (!study.screens.empty()) {
         auto surface = buildScreeningSurface(*grid, study.screens);

@@ -159,6 +159,32 @@ Result<std::vector<float>> readCanopy(const ScreenLayer& layer, const ElevationG
     return std::move(canopy->heights);
 }
 
+// Crown columns per cell (0 = none): the cells whose centre lies within a crown's radius of
+// its stem, and always the stem's own cell (a crown narrower than a cell still screens).
+std::vector<float> rasterizeCrowns(const ScreenLayer& layer, const GridGeometry& g) {
+    std::vector<float> heights(std::size_t(g.width) * std::size_t(g.height), 0.0f);
+    auto raise = [&](int col, int row, double height) {
+        if (col < 0 || row < 0 || col >= g.width || row >= g.height)
+            return;
+        float& cell = heights[std::size_t(row) * std::size_t(g.width) + std::size_t(col)];
+        cell = std::max(cell, float(height));
+    };
+    for (const PlantCrown& crown : layer.crowns) {
+        const double col = g.colOf(crown.x), row = g.rowOf(crown.y);
+        raise(int(std::lround(col)), int(std::lround(row)), crown.height);
+        const double reachCols = crown.radius / g.cellWidth,
+                     reachRows = crown.radius / g.cellHeight;
+        for (int r = int(std::ceil(row - reachRows)); r <= int(std::floor(row + reachRows)); ++r)
+            for (int c = int(std::ceil(col - reachCols)); c <= int(std::floor(col + reachCols));
+                 ++c) {
+                const double dx = (c - col) * g.cellWidth, dy = (r - row) * g.cellHeight;
+                if (dx * dx + dy * dy <= crown.radius * crown.radius)
+                    raise(c, r, crown.height);
+            }
+    }
+    return heights;
+}
+
 }  // namespace
 
 Result<ScreeningSurface> buildScreeningSurface(const ElevationGrid& ground,
@@ -168,7 +194,9 @@ Result<ScreeningSurface> buildScreeningSurface(const ElevationGrid& ground,
     for (const ScreenLayer& layer : layers) {
         auto heights = layer.kind == ScreenLayer::Kind::Buildings
                            ? rasterizeBuildings(layer, ground)
-                           : readCanopy(layer, ground);
+                       : layer.kind == ScreenLayer::Kind::Canopy
+                           ? readCanopy(layer, ground)
+                           : Result<std::vector<float>>(rasterizeCrowns(layer, ground.geometry));
         if (!heights)
             return heights.error();
         std::vector<float>& into = layer.kind == ScreenLayer::Kind::Buildings ? buildings : canopy;

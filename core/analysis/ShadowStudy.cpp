@@ -113,7 +113,7 @@ Result<ShadowStudy> planShadowStudy(const ProjectModel& model, const Block& bloc
         return grid.error();
     study.grid = *grid;
     const std::string what = "shadow_study '" + study.name + "'";
-    if (Status ok = readScreens(model, reader, what, study.screens); !ok)
+    if (Status ok = readScreens(model, reader, what, study.grid, study.crsWkt, study.screens); !ok)
         return ok.error();
     if (Status ok = readDates(reader, study); !ok)
         return ok.error();

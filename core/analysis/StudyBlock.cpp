@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "sylva/core/geo/ProjectedCoordinates.h"
 #include "sylva/core/model/Schema.h"
+#include "sylva/core/sources/plants/PlantsSource.h"
 
 namespace sylva {
 
@@ -39,14 +41,85 @@ std::string projectRelative(const ProjectModel& model, const std::string& file) 
     return (path.is_absolute() ? path : (folder / path).lexically_normal()).string();
 }
 
-// `screening`: features sources are building footprints, raster sources canopy heights.
+Result<const Source*> ProjectSources::find(const std::string& name) {
+    if (!graph_) {
+        auto graph = SourceGraph::build(model_);
+        if (!graph)
+            return graph.error();
+        graph_.emplace(std::move(*graph));
+    }
+    const Source* source = graph_->find(name);
+    if (source == nullptr)
+        return Error{"no source '" + name + "' in the project's graph"};
+    return source;
+}
+
+Result<GeographicBounds> geographicAreaOf(const GridGeometry& grid, const std::string& crsWkt,
+                                          double marginMetres) {
+    GeographicBounds area = GeographicBounds::empty();
+    const double east = grid.originX + grid.width * grid.cellWidth;
+    const double south = grid.originY - grid.height * grid.cellHeight;
+    // Corners and edge midpoints: a projected rectangle's edges bow little in latitude
+    // and longitude at study sizes; the margin covers the rest.
+    for (double fx : {0.0, 0.5, 1.0})
+        for (double fy : {0.0, 0.5, 1.0}) {
+            auto point =
+                ProjectedCoordinates::toGeodetic(crsWkt, grid.originX + fx * (east - grid.originX),
+                                                 grid.originY + fy * (south - grid.originY));
+            if (!point)
+                return point.error();
+            area.extend(glm::dvec2(point->longitude, point->latitude));
+        }
+    const double latitudeMargin = marginMetres / 6.35e6;
+    const double longitudeMargin =
+        latitudeMargin /
+        std::max(0.01, std::cos(std::max(std::abs(area.north), std::abs(area.south))));
+    area.west -= longitudeMargin;
+    area.east += longitudeMargin;
+    area.south -= latitudeMargin;
+    area.north += latitudeMargin;
+    return area;
+}
+
+namespace {
+
+// A plants source's crowns over the grid, in the grid's CRS.
+Status readPlantScreen(const std::string& name, const PlantsSource& plants, TileProvider& provider,
+                       const GridGeometry& grid, const std::string& crsWkt,
+                       const std::string& where, ScreenLayer& layer) {
+    constexpr double kCrownMargin = 50.0;  // metres: crowns standing outside reach in
+    auto area = geographicAreaOf(grid, crsWkt, kCrownMargin);
+    if (!area)
+        return Error{where + area.error().message};
+    auto crowns = plantCrowns(name, plants, *area, provider);
+    if (!crowns)
+        return Error{where + crowns.error().message};
+    for (PlantCrown& crown : *crowns) {
+        auto xy = ProjectedCoordinates::fromGeodetic(crsWkt, crown.latitude, crown.longitude);
+        if (!xy)
+            return Error{where + xy.error().message};
+        crown.x = xy->x;
+        crown.y = xy->y;
+    }
+    layer.kind = ScreenLayer::Kind::Plants;
+    layer.path = name;
+    layer.crowns = std::move(*crowns);
+    return Status::success();
+}
+
+}  // namespace
+
+// `screening`: features sources are building footprints, raster sources canopy heights,
+// plants sources their crowns.
 Status readScreens(const ProjectModel& model, const BlockReader& reader, const std::string& what,
+                   const GridGeometry& grid, const std::string& crsWkt,
                    std::vector<ScreenLayer>& screens) {
     const Value* screening = reader.block().find("screening") ? reader.value("screening") : nullptr;
     const ValueList* list = screening ? screening->get<ValueList>() : nullptr;
     if (list == nullptr)
         return Status::success();
     const std::string attribute = reader.string("screen_height_attribute", "height");
+    std::optional<ProjectSources> sources;
     for (const Value& item : *list) {
         const Reference* reference = item.get<Reference>();
         const Block* source = reference ? model.findSource(reference->name) : nullptr;
@@ -62,10 +135,25 @@ Status readScreens(const ProjectModel& model, const BlockReader& reader, const s
             layer.heightAttribute = attribute;
         } else if (source->kind == "raster") {
             layer.kind = ScreenLayer::Kind::Canopy;
+        } else if (source->kind == "plants") {
+            if (!sources)
+                sources.emplace(model);
+            auto built = sources->find(reference->name);
+            const PlantsSource* plants = built ? PlantsSource::from(*built) : nullptr;
+            if (plants == nullptr)
+                return Error{where + (built ? "'" + reference->name + "' gives no plants"
+                                            : built.error().message)};
+            if (Status ok = readPlantScreen(reference->name, *plants, sources->provider(), grid,
+                                            crsWkt, where, layer);
+                !ok)
+                return ok;
+            screens.push_back(std::move(layer));
+            continue;
         } else {
             return Error{where + "'" + reference->name + "' is a " + source->kind +
                          " source; a screen is a features source (building footprints with a "
-                         "height) or a raster source (canopy height)"};
+                         "height), a raster source (canopy height) or a plants source (its "
+                         "crowns)"};
         }
         layer.path = projectRelative(model, sourceReader.string("file"));
         screens.push_back(layer);

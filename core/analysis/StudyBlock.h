@@ -4,6 +4,8 @@
 // file:line:col (BlockReader::where or the list item's location).
 #pragma once
 
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,9 @@
 #include "sylva/core/base/Result.h"
 #include "sylva/core/model/BlockReader.h"
 #include "sylva/core/model/ProjectModel.h"
+#include "sylva/core/scheduler/TileEvaluator.h"
+#include "sylva/core/sources/graph/SourceGraph.h"
+#include "sylva/core/sources/vector/FeatureCollection.h"
 
 namespace sylva {
 
@@ -27,10 +32,30 @@ Result<std::string> demPathOf(const ProjectModel& model, const BlockReader& read
 // `resolution` (default: the DEM's cell size); at most `maxCells` cells.
 Result<GridGeometry> gridOf(const BlockReader& reader, const RasterInfo& dem, double maxCells);
 
+// The project's sources, built on first use (only blocks that screen with plants or take
+// their targets from the proposal need them) and evaluated synchronously on the CPU.
+class ProjectSources {
+public:
+    explicit ProjectSources(const ProjectModel& model) : model_(model) {}
+    // The source `name` of the project's graph; fails with the graph's own error.
+    Result<const Source*> find(const std::string& name);
+    TileProvider& provider() { return evaluator_; }
+
+private:
+    const ProjectModel& model_;
+    std::optional<SourceGraph> graph_;
+    TileEvaluator evaluator_;
+};
+
+// The grid's area as WGS84 bounds (radians), widened by `marginMetres`.
+Result<GeographicBounds> geographicAreaOf(const GridGeometry& grid, const std::string& crsWkt,
+                                          double marginMetres);
+
 // `screening`: features sources are building footprints (height attribute
-// `screen_height_attribute`), raster sources canopy heights. `what` names the block in
-// errors ("ztv 'mast'").
+// `screen_height_attribute`), raster sources canopy heights, plants sources their crowns
+// over the grid (PlantCrowns). `what` names the block in errors ("ztv 'mast'").
 Status readScreens(const ProjectModel& model, const BlockReader& reader, const std::string& what,
+                   const GridGeometry& grid, const std::string& crsWkt,
                    std::vector<ScreenLayer>& screens);
 
 }  // namespace sylva

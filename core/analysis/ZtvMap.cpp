@@ -124,14 +124,24 @@ double farthestCorner(const GridGeometry& g, const ViewshedTarget& t) {
     return std::hypot(dx, dy);
 }
 
-// Ring lines of the first target: pixels whose centre lies within 0.8 px of a multiple
-// of `spacing` metres from it.
-void drawRingLines(RgbaImage& image, const Frame& f, const ViewshedTarget& t, double spacing) {
+// Metres from map pixel (x, y) to the nearest target.
+double nearestTargetDistance(const Frame& f, std::span<const ViewshedTarget> targets, double x,
+                             double y) {
+    double nearest = INFINITY;
+    for (const ViewshedTarget& t : targets)
+        nearest = std::min(nearest, std::hypot(x - f.px(t.x), y - f.py(t.y)));
+    return nearest * f.metresPerPixel();
+}
+
+// Ring lines at multiples of `spacing` metres from the nearest target (one target: circles;
+// a wind farm: the envelope of its turbines' circles, as ZTV maps draw distance from the
+// nearest turbine): pixels whose centre lies within 0.8 px of such a distance.
+void drawRingLines(RgbaImage& image, const Frame& f, std::span<const ViewshedTarget> targets,
+                   double spacing) {
     const double half = 0.8 * f.metresPerPixel();
-    const double tx = f.px(t.x), ty = f.py(t.y);
     for (int y = 0; y < image.height; ++y) {
         for (int x = 0; x < image.width; ++x) {
-            const double d = std::hypot(x + 0.5 - tx, y + 0.5 - ty) * f.metresPerPixel();
+            const double d = nearestTargetDistance(f, targets, x + 0.5, y + 0.5);
             const double m = std::round(d / spacing);
             if (m >= 1.0 && std::abs(d - m * spacing) <= half)
                 put(image, x, y, kZtvRingColour);
@@ -143,10 +153,32 @@ bool overlaps(const std::array<int, 4>& a, const std::array<int, 4>& b) {
     return a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
 }
 
-// A label on each ring where it crosses the line from the target towards the map's
+// Pixels along the ray (ux, uy) from (tx, ty) to where the nearest-target distance first
+// reaches `metres` (the ray's length when it never does): half-pixel steps, then bisection.
+double rayDistanceTo(const Frame& f, std::span<const ViewshedTarget> targets, double tx, double ty,
+                     double ux, double uy, double metres, double length) {
+    auto reached = [&](double r) {
+        return nearestTargetDistance(f, targets, tx + r * ux, ty + r * uy) >= metres;
+    };
+    double low = 0.0, high = 0.5;
+    while (high <= length && !reached(high)) {
+        low = high;
+        high += 0.5;
+    }
+    if (high > length)
+        return length;
+    for (int step = 0; step < 12; ++step) {
+        const double mid = 0.5 * (low + high);
+        (reached(mid) ? high : low) = mid;
+    }
+    return high;
+}
+
+// A label on each ring where it crosses the line from the first target towards the map's
 // centre, skipped where it would leave the map or cover one of `avoid`.
-void drawRingLabels(RgbaImage& image, const Frame& f, const ViewshedTarget& t, double spacing,
-                    int fontScale, const std::vector<std::array<int, 4>>& avoid) {
+void drawRingLabels(RgbaImage& image, const Frame& f, std::span<const ViewshedTarget> targets,
+                    double spacing, int fontScale, const std::vector<std::array<int, 4>>& avoid) {
+    const ViewshedTarget& t = targets.front();
     const double tx = f.px(t.x), ty = f.py(t.y);
     double ux = image.width / 2.0 - tx, uy = image.height / 2.0 - ty;
     const double length = std::hypot(ux, uy);
@@ -154,7 +186,8 @@ void drawRingLabels(RgbaImage& image, const Frame& f, const ViewshedTarget& t, d
     uy = length > 1.0 ? uy / length : -1.0;
     const int th = BitmapFont::textHeight(fontScale);
     for (int m = 1; m * spacing <= farthestCorner(f.g, t); ++m) {
-        const double r = m * spacing / f.metresPerPixel();
+        const double r = rayDistanceTo(f, targets, tx, ty, ux, uy, m * spacing,
+                                       2.0 * (image.width + image.height));
         const std::string label = distanceLabel(m * spacing);
         const int w = BitmapFont::textWidth(label, fontScale);
         const int lx = int(std::lround(tx + r * ux)) - w / 2;
@@ -219,8 +252,8 @@ std::vector<std::string> legendNotes(const ZtvMapOptions& o, double spacing, int
                                      double zFactor) {
     char buffer[96];
     std::vector<std::string> notes;
-    std::snprintf(buffer, sizeof buffer, "rings every %s from %s", distanceLabel(spacing).c_str(),
-                  targets == 1 ? "the target" : "target 1");
+    std::snprintf(buffer, sizeof buffer, "rings every %s %s", distanceLabel(spacing).c_str(),
+                  targets == 1 ? "from the target" : "to nearest target");
     notes.emplace_back(buffer);
     std::snprintf(buffer, sizeof buffer, "observer %g m above ground", o.viewshed.observerHeight);
     notes.emplace_back(buffer);
@@ -392,8 +425,7 @@ ZtvMap drawZtvMap(const ElevationGrid& grid, const ViewshedResult& result,
         legend = {!right, !bottom};
         bar = {!right, bottom};
         map.layout.ringSpacing = ringSpacing(farthestCorner(g, targets[0]));
-        for (const ViewshedTarget& target : targets)  // the same spacing around each
-            drawRingLines(map.image, frame, target, map.layout.ringSpacing);
+        drawRingLines(map.image, frame, targets, map.layout.ringSpacing);
         // The north arrow in the free corner on the target's side, away from the bar.
         const int arrow = 10 * fontScale;
         drawNorthArrow(map.image, right ? map.image.width - 3 * arrow : 2 * arrow,
@@ -401,7 +433,7 @@ ZtvMap drawZtvMap(const ElevationGrid& grid, const ViewshedResult& result,
     }
     for (std::size_t i = 0; i < targets.size(); ++i) {
         drawTarget(map.image, frame, targets[i], 4 * fontScale);
-        if (targets.size() > 1)  // numbered, since the rings and legend name target 1
+        if (targets.size() > 1)  // numbered, as the GeoTIFF's count and the summary name them
             BitmapFont::draw(map.image, int(frame.px(targets[i].x)) + 6 * fontScale,
                              int(frame.py(targets[i].y)) - 3 * fontScale, std::to_string(i + 1),
                              fontScale, kBlack.data(), kWhite.data());
@@ -411,7 +443,7 @@ ZtvMap drawZtvMap(const ElevationGrid& grid, const ViewshedResult& result,
     drawLegend(map.image, options, int(targets.size()), noData, fontScale, legend, map.layout);
     map.layout.scaleBarBox = drawScaleBar(map.image, frame, fontScale, bar);
     if (!targets.empty())
-        drawRingLabels(map.image, frame, targets[0], map.layout.ringSpacing, fontScale,
+        drawRingLabels(map.image, frame, targets, map.layout.ringSpacing, fontScale,
                        {map.layout.legendBox, map.layout.scaleBarBox});
     return map;
 }

@@ -2,10 +2,12 @@
 
 #include <ogr_srs_api.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
 #include "StudyBlock.h"
+#include "sylva/core/geo/ProjectedCoordinates.h"
 #include "sylva/core/model/BlockReader.h"
 #include "sylva/core/sources/GdalDatasetPool.h"
 
@@ -16,10 +18,10 @@ namespace {
 constexpr double kRadian = 180.0 / 3.14159265358979323846;
 
 Status readTargets(const BlockReader& reader, const std::string& wkt, ZtvStudy& study) {
-    const Value* targets = reader.value("targets");
+    const Value* targets = reader.block().find("targets") ? reader.value("targets") : nullptr;
     const ValueList* list = targets ? targets->get<ValueList>() : nullptr;
     if (list == nullptr || list->empty())
-        return Error{reader.where("targets") + "a ztv needs at least one target"};
+        return Status::success();
     auto transform = GdalDatasetPool::fromLonLat(wkt);
     if (!transform)
         return Error{reader.where("elevation") + transform.error().message};
@@ -49,6 +51,47 @@ Status readTargets(const BlockReader& reader, const std::string& wkt, ZtvStudy& 
     return Status::success();
 }
 
+// `proposal`: every model an objects source places, at its highest point (ProposalTargets).
+Status readProposal(const ProjectModel& model, const BlockReader& reader, ZtvStudy& study) {
+    const Value* proposal = reader.block().find("proposal") ? reader.value("proposal") : nullptr;
+    const ValueList* list = proposal ? proposal->get<ValueList>() : nullptr;
+    if (list == nullptr)
+        return Status::success();
+    ProjectSources sources(model);
+    for (const Value& item : *list) {
+        const Reference* reference = item.get<Reference>();
+        const Block* block = reference ? model.findSource(reference->name) : nullptr;
+        const std::string where = item.location.toString() + ": ztv '" + study.name + "': ";
+        if (block == nullptr || block->kind != "objects")
+            return Error{where + (block ? "'" + reference->name + "' is a " + block->kind +
+                                              " source; proposal targets come from objects "
+                                              "sources (placed models)"
+                                        : std::string("a proposal target must be a source"))};
+        auto built = sources.find(reference->name);
+        const MeshSource* meshes = built ? MeshSource::from(*built) : nullptr;
+        if (meshes == nullptr)
+            return Error{where + (built ? "'" + reference->name + "' gives no meshes"
+                                        : built.error().message)};
+        auto tops = proposalTops(reference->name, *meshes, sources.provider());
+        if (!tops)
+            return Error{where + tops.error().message};
+        for (ProposalTop& top : *tops) {
+            auto xy = ProjectedCoordinates::fromGeodetic(study.crsWkt, top.latitude, top.longitude);
+            if (!xy)
+                return Error{where + top.label + ": " + xy.error().message};
+            if (!study.grid.containsCentreHull(xy->x, xy->y))
+                return Error{where + top.label + " lies outside the extent (at " +
+                             formatMetres(xy->x) + " E, " + formatMetres(xy->y) +
+                             " N in the elevation raster's CRS)"};
+            top.x = xy->x;
+            top.y = xy->y;
+            study.targets.push_back({top.x, top.y, top.height});
+            study.proposal.push_back(top);
+        }
+    }
+    return Status::success();
+}
+
 }  // namespace
 
 Result<ZtvStudy> planZtv(const ProjectModel& model, const Block& block, bool force) {
@@ -73,10 +116,17 @@ Result<ZtvStudy> planZtv(const ProjectModel& model, const Block& block, bool for
     study.grid = *grid;
     if (Status ok = readTargets(reader, study.crsWkt, study); !ok)
         return ok.error();
+    if (Status ok = readProposal(model, reader, study); !ok)
+        return ok.error();
+    if (study.targets.empty() && study.proposal.empty())
+        return Error{reader.where("targets") + "ztv '" + study.name +
+                     "' has no target: give `targets` or `proposal`"};
     study.options.observerHeight = reader.optionalNumber("observer_height").value_or(2.0);
     study.options.curvature = reader.boolean("curvature", true);
     study.options.refraction = reader.optionalNumber("refraction").value_or(0.13);
-    if (Status ok = readScreens(model, reader, "ztv '" + study.name + "'", study.screens); !ok)
+    if (Status ok = readScreens(model, reader, "ztv '" + study.name + "'", study.grid, study.crsWkt,
+                                study.screens);
+        !ok)
         return ok.error();
     study.output = reader.string("output", "out/{name}.tif");
     for (std::size_t at; (at = study.output.find("{name}")) != std::string::npos;)

@@ -44,10 +44,17 @@ KindSchema ztvBlock() {
     AttributeSchema targets = attribute(
         "targets", ValueType::List,
         "The targets { position, height } (turbine tips, masts): the ZTV counts per cell how "
-        "many tops are visible.");
+        "many tops are visible. A ztv needs `targets`, `proposal` or both.");
     targets.element = ValueType::Object;
-    targets.required = true;
     targets.fields = {position, height};
+
+    AttributeSchema proposal = attribute(
+        "proposal", ValueType::List,
+        "Targets from the proposal: `objects` sources whose every placed model is a target at "
+        "its highest point, rotors swept through a full turn (a turbine's blade tip at twelve "
+        "o'clock) above its base, stood on this block's DEM; counted after `targets`.");
+    proposal.element = ValueType::Reference;
+    proposal.target = "source";
 
     AttributeSchema extent =
         attribute("extent", ValueType::List,
@@ -77,8 +84,10 @@ KindSchema ztvBlock() {
         "screening", ValueType::List,
         "Screens for a screened ZTV, added to the bare earth as a surface model: `features` "
         "sources of building footprints (polygons with a numeric height attribute in metres, "
-        "`screen_height_attribute`) and `raster` sources of canopy height (metres above the "
-        "ground, the DEM's CRS). Observers stand on the ground; a cell whose screen is at "
+        "`screen_height_attribute`), `raster` sources of canopy height (metres above the "
+        "ground, the DEM's CRS) and `plants` sources (each tree a column of its model's height "
+        "over its crown radius, the instances the renderer draws). Observers stand on the ground; "
+        "a cell whose screen is at "
         "least the observer height tall holds no observer (no data). Empty: bare earth.");
     screening.element = ValueType::Reference;
     screening.target = "source";
@@ -106,7 +115,7 @@ KindSchema ztvBlock() {
         "for each cell of the extent, are the targets visible from an observer standing "
         "there (line of sight over the DEM, with Earth curvature and refraction; "
         "docs/analysis.md).",
-        {elevation, targets,
+        {elevation, targets, proposal,
          length("observer_height", 2.0, 0.01, "Eye height above the ground at every cell."), extent,
          length("resolution", std::nullopt, 1.0,
                 "Cell size of the analysis grid; the raster's cell size when absent."),

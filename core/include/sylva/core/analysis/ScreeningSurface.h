@@ -7,7 +7,10 @@
 //     tallest wins;
 //   - canopy: a canopy height raster (metres above the ground; no-data and negative
 //     values are open ground), resampled bilinearly at the cell centres; it must share
-//     the DEM's CRS.
+//     the DEM's CRS;
+//   - plants: the crowns of a `plants` source (PlantCrowns), each a column of the tree's
+//     height over the cells whose centre lies within its crown radius (at least the
+//     cell holding the stem), the tallest crown winning; they count as canopy.
 // surface = ground + max(building, canopy) per cell. No-data ground stays no-data.
 //
 // Failures (Result errors naming the file and the reason): an unreadable data set, a
@@ -20,16 +23,18 @@
 #include <string>
 
 #include "sylva/core/analysis/ElevationGrid.h"
+#include "sylva/core/analysis/PlantCrowns.h"
 #include "sylva/core/base/Result.h"
 
 namespace sylva {
 
 struct ScreenLayer {
-    enum class Kind { Buildings, Canopy };
+    enum class Kind { Buildings, Canopy, Plants };
     Kind kind = Kind::Buildings;
     std::string path;                        // vector data set (buildings) or raster (canopy)
     std::string heightAttribute = "height";  // buildings: the field with the height, metres
     std::string layer;                       // buildings: layer name; empty: the first layer
+    std::vector<PlantCrown> crowns;          // plants: x, y in the grid's CRS
 };
 
 struct ScreeningSurface {

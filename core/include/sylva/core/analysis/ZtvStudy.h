@@ -7,13 +7,15 @@
 // file:line:col and the block ("p.sylva:12:5: ztv 'mast': "): an elevation that is not a
 // raster file, a DEM that is not projected, an extent that is malformed or reaches outside
 // the DEM, a grid of more than kMaxCells cells, a target outside the extent, a screen
-// that is neither a features source nor a raster file.
+// that is neither a features, raster nor plants source, no target at all (neither `targets`
+// nor `proposal`), a proposal source that is not an objects source or places nothing.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "sylva/core/analysis/ElevationGrid.h"
+#include "sylva/core/analysis/ProposalTargets.h"
 #include "sylva/core/analysis/ScreeningSurface.h"
 #include "sylva/core/analysis/Viewshed.h"
 #include "sylva/core/base/Result.h"
@@ -26,7 +28,8 @@ struct ZtvStudy {
     std::string demPath;  // the raster file, absolute or relative to the current folder
     GridGeometry grid;    // in the DEM's CRS (metres)
     std::string crsWkt;   // the DEM's CRS
-    std::vector<ViewshedTarget> targets;
+    std::vector<ViewshedTarget> targets;  // `targets`, then one per `proposal` top
+    std::vector<ProposalTop> proposal;    // `proposal`, already among `targets` (for labels)
     ViewshedOptions options;
     std::string output;  // `output` with {name} replaced, relative to the output folder
     std::vector<ScreenLayer> screens;  // `screening`; empty: the bare-earth ZTV
