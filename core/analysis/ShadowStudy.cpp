@@ -108,7 +108,7 @@ Result<ShadowStudy> planShadowStudy(const ProjectModel& model, const Block& bloc
         return Error{reader.where("elevation") + study.demPath +
                      ": the DEM needs a projected CRS in metres"};
     study.crsWkt = info->crsWkt;
-    auto grid = gridOf(reader, *info, force ? 1e300 : ShadowStudy::kMaxCells);
+    auto grid = gridOf(reader, *info, projectCrsOf(model), force ? 1e300 : ShadowStudy::kMaxCells);
     if (!grid)
         return grid.error();
     study.grid = *grid;

@@ -1,9 +1,12 @@
 #include "StudyBlock.h"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+
+#include <ogr_srs_api.h>
 
 #include "sylva/core/geo/ProjectedCoordinates.h"
 #include "sylva/core/model/Schema.h"
@@ -161,8 +164,55 @@ Status readScreens(const ProjectModel& model, const BlockReader& reader, const s
     return Status::success();
 }
 
-// The analysis grid: `extent` (default: the DEM) snapped to whole cells of `resolution`.
-Result<GridGeometry> gridOf(const BlockReader& reader, const RasterInfo& dem, double maxCells) {
+// The project's `crs` (empty when the project has none).
+std::string projectCrsOf(const ProjectModel& model) {
+    const Attribute* crs = model.project.find("crs");
+    const std::string* text = crs ? crs->value.get<std::string>() : nullptr;
+    return text ? *text : std::string();
+}
+
+namespace {
+
+bool sameCrs(const std::string& a, const std::string& b) {
+    OGRSpatialReferenceH first = OSRNewSpatialReference(nullptr);
+    OGRSpatialReferenceH second = OSRNewSpatialReference(nullptr);
+    const bool same = OSRSetFromUserInput(first, a.c_str()) == OGRERR_NONE &&
+                      OSRSetFromUserInput(second, b.c_str()) == OGRERR_NONE &&
+                      OSRIsSame(first, second) != 0;
+    OSRDestroySpatialReference(first);
+    OSRDestroySpatialReference(second);
+    return same;
+}
+
+// [west, south, east, north] in `fromCrs` as the bounding box, in `toCrs`, of its corners
+// and edge midpoints (a rectangle in one projected CRS bows little in another at study
+// sizes; the box holds the corners exactly).
+Result<std::array<double, 4>> extentIn(const std::array<double, 4>& extent,
+                                       const std::string& fromCrs, const std::string& toCrs) {
+    std::array<double, 4> box = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+    for (double fx : {0.0, 0.5, 1.0})
+        for (double fy : {0.0, 0.5, 1.0}) {
+            auto geodetic =
+                ProjectedCoordinates::toGeodetic(fromCrs, extent[0] + fx * (extent[2] - extent[0]),
+                                                 extent[1] + fy * (extent[3] - extent[1]));
+            if (!geodetic)
+                return geodetic.error();
+            auto xy =
+                ProjectedCoordinates::fromGeodetic(toCrs, geodetic->latitude, geodetic->longitude);
+            if (!xy)
+                return xy.error();
+            box = {std::min(box[0], xy->x), std::min(box[1], xy->y), std::max(box[2], xy->x),
+                   std::max(box[3], xy->y)};
+        }
+    return box;
+}
+
+}  // namespace
+
+// The analysis grid: `extent` (default: the DEM; in the project's CRS when it has one)
+// snapped to whole cells of `resolution`.
+Result<GridGeometry> gridOf(const BlockReader& reader, const RasterInfo& dem,
+                            const std::string& projectCrs, double maxCells) {
     const GridGeometry& d = dem.geometry;
     double west = d.originX, north = d.originY;
     double east = d.originX + d.width * d.cellWidth, south = d.originY - d.height * d.cellHeight;
@@ -177,6 +227,17 @@ Result<GridGeometry> gridOf(const BlockReader& reader, const RasterInfo& dem, do
         north = (*list)[3].get<Quantity>()->value;
         if (!(east > west && north > south))
             return Error{reader.where("extent") + "extent must have west < east and south < north"};
+        if (!projectCrs.empty() && !sameCrs(projectCrs, dem.crsWkt)) {
+            auto box = extentIn({west, south, east, north}, projectCrs, dem.crsWkt);
+            if (!box)
+                return Error{reader.where("extent") + "the extent (in the project's crs '" +
+                             projectCrs +
+                             "') cannot be converted to the DEM's CRS: " + box.error().message};
+            west = (*box)[0];
+            south = (*box)[1];
+            east = (*box)[2];
+            north = (*box)[3];
+        }
         const double tolerance = 1e-6 * d.cellWidth;
         if (west < d.originX - tolerance || north > d.originY + tolerance ||
             east > d.originX + d.width * d.cellWidth + tolerance ||
@@ -185,7 +246,7 @@ Result<GridGeometry> gridOf(const BlockReader& reader, const RasterInfo& dem, do
                 reader.where("extent") + "the extent reaches outside the elevation raster (" +
                 formatMetres(d.originX) + " .. " + formatMetres(d.originX + d.width * d.cellWidth) +
                 " east, " + formatMetres(d.originY - d.height * d.cellHeight) + " .. " +
-                formatMetres(d.originY) + " north)"};
+                formatMetres(d.originY) + " north in the DEM's CRS)"};
     }
     const double cell = reader.optionalNumber("resolution").value_or(d.cellWidth);
     GridGeometry grid{west,

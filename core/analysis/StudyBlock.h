@@ -28,9 +28,15 @@ std::string projectRelative(const ProjectModel& model, const std::string& file);
 // The `elevation` reference: a raster source whose file is the DEM (its path).
 Result<std::string> demPathOf(const ProjectModel& model, const BlockReader& reader);
 
-// The analysis grid: `extent` (default: the DEM) snapped to whole cells of
-// `resolution` (default: the DEM's cell size); at most `maxCells` cells.
-Result<GridGeometry> gridOf(const BlockReader& reader, const RasterInfo& dem, double maxCells);
+// The project's `crs` (`project { crs }`), empty when it has none.
+std::string projectCrsOf(const ProjectModel& model);
+
+// The analysis grid in the DEM's CRS: `extent` (default: the DEM; given in the project's
+// CRS when the project has one, like [x, y] positions, else in the DEM's; another CRS is
+// converted to the bounding box of the extent's corners and edge midpoints) snapped to
+// whole cells of `resolution` (default: the DEM's cell size); at most `maxCells` cells.
+Result<GridGeometry> gridOf(const BlockReader& reader, const RasterInfo& dem,
+                            const std::string& projectCrs, double maxCells);
 
 // The project's sources, built on first use (only blocks that screen with plants or take
 // their targets from the proposal need them) and evaluated synchronously on the CPU.

@@ -110,7 +110,7 @@ Result<ZtvStudy> planZtv(const ProjectModel& model, const Block& block, bool for
                      ": the DEM needs a projected CRS in metres (warp it, e.g. gdalwarp -t_srs "
                      "EPSG:32632)"};
     study.crsWkt = info->crsWkt;
-    auto grid = gridOf(reader, *info, force ? 1e300 : ZtvStudy::kMaxCells);
+    auto grid = gridOf(reader, *info, projectCrsOf(model), force ? 1e300 : ZtvStudy::kMaxCells);
     if (!grid)
         return grid.error();
     study.grid = *grid;

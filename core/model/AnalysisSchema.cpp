@@ -58,7 +58,9 @@ KindSchema ztvBlock() {
 
     AttributeSchema extent =
         attribute("extent", ValueType::List,
-                  "[west, south, east, north] in metres in the elevation raster's CRS; the "
+                  "[west, south, east, north] in metres in the project's `crs` (like [x, y] "
+                  "positions; the elevation raster's CRS when the project has none; another "
+                  "CRS than the raster's is converted to the box around the extent). The "
                   "whole raster when absent. Must lie inside the raster.");
     extent.element = ValueType::Number;
     extent.dimension = Dimension::Length;

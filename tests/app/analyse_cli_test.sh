@@ -263,6 +263,30 @@ expect_stderr "baddate.sylva:5:14: shadow_study 'sun': a date is a plain day"
 expect_nothing_written
 end
 
+# The extent in the project's crs (web Mercator here) is converted to the DEM's UTM 25S:
+# the grid is the box around the converted corners, so it holds the UTM extent of `good`.
+read -r mw ms _ <<<"$(echo 290150 9115300 | gdaltransform -s_srs EPSG:32725 -t_srs EPSG:3857)"
+read -r me mn _ <<<"$(echo 291350 9116380 | gdaltransform -s_srs EPSG:32725 -t_srs EPSG:3857)"
+project mercator "ztv mast {
+    elevation = @dem
+    targets = [{ position = geo(-7.995347deg, -34.896980deg), height = 40m }]
+    extent = [${mw}m, ${ms}m, ${me}m, ${mn}m]
+    resolution = 30m
+    output = \"out/{name}.tif\"
+}
+project { crs = \"EPSG:3857\" }"
+begin "extent in the project's crs (EPSG:3857) -> a grid in the DEM's CRS around it"
+rm -rf "$SCRATCH/out"
+(cd "$SCRATCH" && "$SYLVA" analyse mercator.sylva >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 0
+origin=$(gdalinfo "$SCRATCH/out/mast.tif" 2>/dev/null | sed -n 's/^Origin = (\(.*\))$/\1/p')
+python3 - "$origin" <<'PY' || fail "origin '$origin' is not within 30 m of (290150, 9116380)"
+import sys
+x, y = (float(v) for v in sys.argv[1].split(","))
+sys.exit(0 if abs(x - 290150) < 30 and abs(y - 9116380) < 30 else 1)
+PY
+end
+
 # Targets from the proposal: turbines (the Olinda model: 80 m hub, 40 m blades, scaled by
 # hub_height / 80) placed by an objects source. The tip at twelve o'clock whatever the rotor
 # angle: 40 m hub -> 60 m, 30 m hub -> 45 m; the cumulative ZTV equals the one of the same
