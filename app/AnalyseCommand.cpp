@@ -1,12 +1,16 @@
-// `sylva analyse PROJECT [--only NAME] [--out DIR] [--json] [--force] [-D name=value]
-// [--set block.attr=value]`: evaluates the project's analysis blocks (ztv, shadow_study)
-// and writes their GeoTIFFs and PNG maps (core/analysis; a ztv's map is the GeoTIFF's
+// `sylva analyse PROJECT [--only NAME] [--out DIR] [--json] [--force] [--resume] [--shard i/N]
+// [-D name=value] [--set block.attr=value]`: evaluates the project's analysis blocks (ztv,
+// shadow_study) and writes their GeoTIFFs and PNG maps (core/analysis; a ztv's map is the GeoTIFF's
 // path with the extension .png; a shadow study writes a folder per block). --force lifts
 // the grid's cell limit (ZtvStudy::kMaxCells, ShadowStudy::kMaxCells). Every selected block is
 // planned against its DEM first, so a located error in any of them stops the command before a file
 // is written; each file is written atomically, and a study whose GeoTIFF fails leaves no map
 // either. Progress goes to stderr; --json prints one summary per block on stdout (name, output,
-// cells, visible cells and share, targets, seconds).
+// cells, visible cells and share, targets, seconds). Like `render`, every finished block is
+// recorded in a manifest (DIR/analyse-manifest.json: output, kind, the block's
+// analysisHash, seconds); --resume skips a block whose record has the current hash and
+// whose output exists; --shard i/N runs every N-th block from the i-th (all are planned,
+// so errors anywhere still stop every shard). Exit 75 when the manifest cannot be saved.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,6 +22,7 @@
 #include "CommandLine.h"
 #include "Commands.h"
 #include "ProjectSession.h"
+#include "sylva/core/analysis/AnalysisHash.h"
 #include "sylva/core/analysis/GridGeoTiff.h"
 #include "sylva/core/analysis/ScreeningSurface.h"
 #include "sylva/core/analysis/ShadowMap.h"
@@ -26,6 +31,8 @@
 #include "sylva/core/analysis/ZtvMap.h"
 #include "sylva/core/analysis/ZtvStudy.h"
 #include "sylva/core/analysis/ZtvWriter.h"
+#include "sylva/core/scene/RenderManifest.h"
+#include "sylva/core/scene/ViewSeries.h"
 #include "sylva/dsl/ProjectLoader.h"
 
 namespace sylva::app {
@@ -33,8 +40,8 @@ namespace sylva::app {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: sylva analyse PROJECT [--only NAME] [--out DIR] [--json] [--force] [-D name=value] "
-    "[--set block.attr=value]";
+    "usage: sylva analyse PROJECT [--only NAME] [--out DIR] [--json] [--force] [--resume] "
+    "[--shard i/N] [-D name=value] [--set block.attr=value]";
 
 // The analysis blocks (ztv, shadow_study) to run: all, or the one --only names
 // (nullopt after reporting).
@@ -246,13 +253,123 @@ std::optional<nlohmann::ordered_json> runStudy(const ZtvStudy& study,
 
 }  // namespace
 
+namespace {
+
+// One selected block, planned: its study, what decides its files and where they go.
+struct PlannedBlock {
+    const Block* block = nullptr;
+    std::optional<ZtvStudy> ztv;
+    std::optional<ShadowStudy> shadow;
+    std::uint64_t hash = 0;  // analysisHash
+    std::string output;      // the GeoTIFF (ztv) or folder (shadow_study), relative to --out
+};
+
+// Plans every block (all of them, so any located error stops the run before a file is
+// written); nullopt after reporting.
+std::optional<std::vector<PlannedBlock>> planBlocks(const ProjectModel& model,
+                                                    const std::vector<const Block*>& blocks,
+                                                    bool force) {
+    std::vector<PlannedBlock> planned;
+    bool failed = false;
+    for (const Block* block : blocks) {
+        PlannedBlock item;
+        item.block = block;
+        item.hash = analysisHash(model, *block);
+        Status ok = Status::success();
+        if (block->keyword == "shadow_study") {
+            auto study = planShadowStudy(model, *block, force);
+            ok = study ? Status::success() : Status(study.error());
+            if (study) {
+                item.output = study->output;
+                item.shadow = std::move(*study);
+            }
+        } else {
+            auto study = planZtv(model, *block, force);
+            ok = study ? Status::success() : Status(study.error());
+            if (study) {
+                item.output = study->output;
+                item.ztv = std::move(*study);
+            }
+        }
+        if (!ok) {
+            std::fprintf(stderr, "error: %s\n", ok.error().message.c_str());
+            failed = true;
+        }
+        planned.push_back(std::move(item));
+    }
+    return failed ? std::nullopt : std::optional(std::move(planned));
+}
+
+// Whether --resume may skip `item`: the manifest has its output with the same hash and
+// the output (GeoTIFF, or the study's folder) is there.
+bool upToDate(const RenderManifest& manifest, const PlannedBlock& item,
+              const std::filesystem::path& outFolder) {
+    const auto found = manifest.entries().find(item.output);
+    std::error_code error;
+    return found != manifest.entries().end() && found->second.hash == item.hash &&
+           std::filesystem::exists(outFolder / item.output, error);
+}
+
+// Runs the planned blocks of this shard (--shard i/N: every N-th from the i-th), skipping
+// up-to-date ones with --resume and recording each finished block in the manifest.
+int runPlanned(const std::vector<PlannedBlock>& planned, const ParsedCommandLine& command,
+               std::pair<int, int> shard) {
+    const std::filesystem::path outFolder = command.get("out").value_or(".");
+    RenderManifest manifest(outFolder / "analyse-manifest.json");
+    if (Status loaded = manifest.load(); !loaded) {
+        reportError(loaded.error().message);
+        return 1;
+    }
+    nlohmann::ordered_json summaries = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < planned.size(); ++i) {
+        const PlannedBlock& item = planned[i];
+        if (int(i % std::size_t(shard.second)) != shard.first - 1)
+            continue;
+        const std::string what = item.block->keyword + " '" + item.block->name + "'";
+        if (command.has("resume") && upToDate(manifest, item, outFolder)) {
+            std::fprintf(stderr, "%s: up to date, skipped (--resume)\n", what.c_str());
+            summaries.push_back({{"name", item.block->name},
+                                 {"kind", item.block->keyword},
+                                 {"output", (outFolder / item.output).string()},
+                                 {"skipped", true}});
+            continue;
+        }
+        auto summary =
+            item.ztv ? runStudy(*item.ztv, outFolder) : runShadowStudy(*item.shadow, outFolder);
+        if (!summary)
+            return 1;
+        ManifestEntry entry;
+        entry.output = item.output;
+        entry.kind = item.block->keyword;
+        entry.view = item.block->name;
+        entry.hash = item.hash;
+        entry.seconds = (*summary)["seconds"].get<double>();
+        manifest.record(entry);
+        if (Status saved = manifest.save(); !saved) {
+            reportError(what + ": written, but " + saved.error().message +
+                        "; run again (--resume cannot skip it)");
+            return 75;
+        }
+        summaries.push_back(std::move(*summary));
+    }
+    if (command.has("json"))
+        std::fputs((summaries.dump(2) + "\n").c_str(), stdout);
+    return 0;
+}
+
+}  // namespace
+
 int runAnalyse(const std::vector<std::string>& originalArguments) {
     std::vector<std::string> arguments = originalArguments;
     std::string setError;
     auto sets = extractSets(arguments, setError);
-    const ParsedCommandLine command = parseCommandLine(
-        arguments,
-        {{"help", false}, {"json", false}, {"force", false}, {"only", true}, {"out", true}});
+    const ParsedCommandLine command = parseCommandLine(arguments, {{"help", false},
+                                                                   {"json", false},
+                                                                   {"force", false},
+                                                                   {"resume", false},
+                                                                   {"only", true},
+                                                                   {"shard", true},
+                                                                   {"out", true}});
     if (command.has("help")) {
         std::puts(kUsage);
         return 0;
@@ -260,6 +377,14 @@ int runAnalyse(const std::vector<std::string>& originalArguments) {
     std::string error = !setError.empty() ? setError : command.error;
     if (error.empty() && command.positional.size() != 1)
         error = "analyse needs exactly one project file";
+    std::pair<int, int> shard{1, 1};
+    if (std::optional<std::string> text = command.get("shard"); text && error.empty()) {
+        auto parsed = ViewSeries::parseShard(*text);
+        if (parsed)
+            shard = *parsed;
+        else
+            error = "--shard " + *text + ": " + parsed.error().message;
+    }
     if (!error.empty()) {
         reportError(error + "\n" + kUsage);
         return 2;
@@ -271,47 +396,10 @@ int runAnalyse(const std::vector<std::string>& originalArguments) {
     const auto blocks = selectBlocks(*loaded.model, command.get("only"));
     if (!blocks)
         return 1;
-    std::vector<ZtvStudy> studies;
-    std::vector<ShadowStudy> shadowStudies;
-    bool failed = false;
-    const bool force = command.has("force");
-    for (const Block* block : *blocks) {
-        Status planned = Status::success();
-        if (block->keyword == "shadow_study") {
-            auto study = planShadowStudy(*loaded.model, *block, force);
-            planned = study ? Status::success() : Status(study.error());
-            if (study)
-                shadowStudies.push_back(std::move(*study));
-        } else {
-            auto study = planZtv(*loaded.model, *block, force);
-            planned = study ? Status::success() : Status(study.error());
-            if (study)
-                studies.push_back(std::move(*study));
-        }
-        if (!planned) {
-            std::fprintf(stderr, "error: %s\n", planned.error().message.c_str());
-            failed = true;
-        }
-    }
-    if (failed)
+    const auto planned = planBlocks(*loaded.model, *blocks, command.has("force"));
+    if (!planned)
         return 1;
-    const std::filesystem::path outFolder = command.get("out").value_or(".");
-    nlohmann::ordered_json summaries = nlohmann::ordered_json::array();
-    for (const ZtvStudy& study : studies) {
-        auto summary = runStudy(study, outFolder);
-        if (!summary)
-            return 1;
-        summaries.push_back(std::move(*summary));
-    }
-    for (const ShadowStudy& study : shadowStudies) {
-        auto summary = runShadowStudy(study, outFolder);
-        if (!summary)
-            return 1;
-        summaries.push_back(std::move(*summary));
-    }
-    if (command.has("json"))
-        std::fputs((summaries.dump(2) + "\n").c_str(), stdout);
-    return 0;
+    return runPlanned(*planned, command, shard);
 }
 
 }  // namespace sylva::app

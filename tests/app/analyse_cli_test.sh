@@ -263,6 +263,43 @@ expect_stderr "baddate.sylva:5:14: shadow_study 'sun': a date is a plain day"
 expect_nothing_written
 end
 
+# Resume and shards, as `render` has them: a second --resume run skips both blocks of
+# `screened` (the manifest holds their hashes); touching the footprints file reruns the
+# two blocks that read it; an edit of one block reruns that block only; --shard 2/2 runs
+# the second block only.
+begin "analyse --resume skips up-to-date blocks and reruns what changed"
+rm -rf "$SCRATCH/out"
+(cd "$SCRATCH" && "$SYLVA" analyse screened.sylva --resume >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 0
+[ -f "$SCRATCH/analyse-manifest.json" ] || fail "no analyse-manifest.json"
+(cd "$SCRATCH" && "$SYLVA" analyse screened.sylva --resume --json >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 0
+expect_stderr "ztv 'mast': up to date, skipped (--resume)"
+expect_stderr "shadow_study 'sun': up to date, skipped (--resume)"
+[ "$(grep -c '"skipped": true' "$OUT")" -eq 2 ] || fail "not both skipped"
+sed -i 's/step_minutes = 120/step_minutes = 180/' "$SCRATCH/screened.sylva"
+(cd "$SCRATCH" && "$SYLVA" analyse screened.sylva --resume >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 0
+expect_stderr "ztv 'mast': up to date, skipped (--resume)"
+grep -q "shadow_study 'sun': up to date" "$ERR" && fail "the edited shadow study was skipped"
+touch -d '2030-01-01' "$SCRATCH/town.geojson"
+(cd "$SCRATCH" && "$SYLVA" analyse screened.sylva --resume >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 0
+grep -q "up to date" "$ERR" && fail "a block was skipped after its footprints changed"
+sed -i 's/step_minutes = 180/step_minutes = 120/' "$SCRATCH/screened.sylva"
+end
+
+begin "analyse --shard 2/2 runs the second block only; a bad shard is a usage error"
+rm -rf "$SCRATCH/out" "$SCRATCH/analyse-manifest.json"
+(cd "$SCRATCH" && "$SYLVA" analyse screened.sylva --shard 2/2 >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 0
+[ -d "$SCRATCH/out/sun" ] || fail "shard 2/2 did not run the shadow study"
+[ -f "$SCRATCH/out/mast.tif" ] && fail "shard 2/2 ran the ztv"
+(cd "$SCRATCH" && "$SYLVA" analyse screened.sylva --shard 3/2 >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 2
+expect_stderr "--shard 3/2"
+end
+
 # The extent in the project's crs (web Mercator here) is converted to the DEM's UTM 25S:
 # the grid is the box around the converted corners, so it holds the UTM extent of `good`.
 read -r mw ms _ <<<"$(echo 290150 9115300 | gdaltransform -s_srs EPSG:32725 -t_srs EPSG:3857)"
