@@ -5,13 +5,15 @@
 namespace sylva {
 namespace {
 
-inline std::uint32_t hashLattice(std::int64_t x, std::int64_t y, std::int64_t z,
-                                 std::uint32_t seed) {
-    // A 64-bit mix (splitmix64 finaliser) of the three coordinates and the seed.
-    std::uint64_t h = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull;
-    h ^= static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full;
-    h ^= static_cast<std::uint64_t>(z) * 0x165667B19E3779F9ull;
-    h ^= static_cast<std::uint64_t>(seed) * 0xD6E8FEB86659FD93ull;
+// The lattice hash: a 64-bit mix (splitmix64 finaliser) of the three coordinates and the
+// seed, each first multiplied by its own odd constant. The products depend on one
+// coordinate each, so a cell's eight corners share six of them (see operator()).
+constexpr std::uint64_t kHashX = 0x9E3779B97F4A7C15ull;
+constexpr std::uint64_t kHashY = 0xC2B2AE3D27D4EB4Full;
+constexpr std::uint64_t kHashZ = 0x165667B19E3779F9ull;
+constexpr std::uint64_t kHashSeed = 0xD6E8FEB86659FD93ull;
+
+inline std::uint32_t finishHash(std::uint64_t h) {
     h ^= h >> 30;
     h *= 0xBF58476D1CE4E5B9ull;
     h ^= h >> 27;
@@ -20,42 +22,21 @@ inline std::uint32_t hashLattice(std::int64_t x, std::int64_t y, std::int64_t z,
     return static_cast<std::uint32_t>(h);
 }
 
+// Perlin's 12 cube-edge directions (16 entries, four repeated: x+y, -y+z, -x+y, -y-z),
+// as coefficients: a table lookup instead of a switch, whose random branch the hash
+// makes unpredictable (it dominated the cost). The sums keep the switch's order of
+// operations — (gx·x + gy·y) + gz·z with terms of 0 adding an exact zero — so the value
+// is the switch's exactly (up to the sign of a zero result).
+struct Gradient {
+    double x, y, z;
+};
+constexpr Gradient kGradients[16] = {
+    {1, 1, 0}, {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0}, {1, 0, 1}, {-1, 0, 1}, {1, 0, -1}, {-1, 0, -1},
+    {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1}, {1, 1, 0}, {0, -1, 1}, {-1, 1, 0}, {0, -1, -1}};
+
 inline double gradient(std::uint32_t hash, double x, double y, double z) {
-    // Perlin's 12 cube-edge directions (16 entries, four repeated).
-    switch (hash & 15u) {
-        case 0:
-            return x + y;
-        case 1:
-            return -x + y;
-        case 2:
-            return x - y;
-        case 3:
-            return -x - y;
-        case 4:
-            return x + z;
-        case 5:
-            return -x + z;
-        case 6:
-            return x - z;
-        case 7:
-            return -x - z;
-        case 8:
-            return y + z;
-        case 9:
-            return -y + z;
-        case 10:
-            return y - z;
-        case 11:
-            return -y - z;
-        case 12:
-            return x + y;
-        case 13:
-            return -y + z;
-        case 14:
-            return -x + y;
-        default:
-            return -y - z;
-    }
+    const Gradient& g = kGradients[hash & 15u];
+    return g.x * x + g.y * y + g.z * z;
 }
 
 inline double fade(double t) {
@@ -79,14 +60,22 @@ double GradientNoise::operator()(const glm::dvec3& position) const {
     const double z = position.z - fz;
     const double u = fade(x), v = fade(y), w = fade(z);
 
-    const double n000 = gradient(hashLattice(ix, iy, iz, seed_), x, y, z);
-    const double n100 = gradient(hashLattice(ix + 1, iy, iz, seed_), x - 1, y, z);
-    const double n010 = gradient(hashLattice(ix, iy + 1, iz, seed_), x, y - 1, z);
-    const double n110 = gradient(hashLattice(ix + 1, iy + 1, iz, seed_), x - 1, y - 1, z);
-    const double n001 = gradient(hashLattice(ix, iy, iz + 1, seed_), x, y, z - 1);
-    const double n101 = gradient(hashLattice(ix + 1, iy, iz + 1, seed_), x - 1, y, z - 1);
-    const double n011 = gradient(hashLattice(ix, iy + 1, iz + 1, seed_), x, y - 1, z - 1);
-    const double n111 = gradient(hashLattice(ix + 1, iy + 1, iz + 1, seed_), x - 1, y - 1, z - 1);
+    const std::uint64_t hx0 = static_cast<std::uint64_t>(ix) * kHashX;
+    const std::uint64_t hx1 = static_cast<std::uint64_t>(ix + 1) * kHashX;
+    const std::uint64_t hy0 = static_cast<std::uint64_t>(iy) * kHashY;
+    const std::uint64_t hy1 = static_cast<std::uint64_t>(iy + 1) * kHashY;
+    const std::uint64_t hs = static_cast<std::uint64_t>(seed_) * kHashSeed;
+    const std::uint64_t hz0 = static_cast<std::uint64_t>(iz) * kHashZ ^ hs;
+    const std::uint64_t hz1 = static_cast<std::uint64_t>(iz + 1) * kHashZ ^ hs;
+
+    const double n000 = gradient(finishHash(hx0 ^ hy0 ^ hz0), x, y, z);
+    const double n100 = gradient(finishHash(hx1 ^ hy0 ^ hz0), x - 1, y, z);
+    const double n010 = gradient(finishHash(hx0 ^ hy1 ^ hz0), x, y - 1, z);
+    const double n110 = gradient(finishHash(hx1 ^ hy1 ^ hz0), x - 1, y - 1, z);
+    const double n001 = gradient(finishHash(hx0 ^ hy0 ^ hz1), x, y, z - 1);
+    const double n101 = gradient(finishHash(hx1 ^ hy0 ^ hz1), x - 1, y, z - 1);
+    const double n011 = gradient(finishHash(hx0 ^ hy1 ^ hz1), x, y - 1, z - 1);
+    const double n111 = gradient(finishHash(hx1 ^ hy1 ^ hz1), x - 1, y - 1, z - 1);
 
     return lerp(lerp(lerp(n000, n100, u), lerp(n010, n110, u), v),
                 lerp(lerp(n001, n101, u), lerp(n011, n111, u), v), w);

@@ -32,31 +32,58 @@ NoiseSource::NoiseSource(std::string name, const NoiseParameters& parameters)
     setParameterHash(hash.value());
 }
 
-double NoiseSource::height(const glm::dvec3& unitDirection, double footprintMetres) const {
-    const NoiseParameters& p = parameters_;
-    // Fade an octave out between 4 and 2 footprints per wavelength; 0 = skip.
-    const auto octaveWeight = [footprintMetres](double wavelength) {
-        return footprintMetres > 0.0
-                   ? std::clamp(std::log2(wavelength / (2.0 * footprintMetres)), 0.0, 1.0)
-                   : 1.0;
-    };
-    const auto shift = [](int octave, double phase) {
-        // A fixed, irrational shift per octave decorrelates the lattices.
-        return glm::dvec3(0.3183 * octave + 0.11 + phase, 0.5772 * octave + 0.37,
-                          0.7071 * octave + 0.73 - phase);
-    };
+namespace {
 
+// Fade an octave out between 4 and 2 footprints per wavelength; 0 = skip.
+double octaveWeight(double wavelength, double footprintMetres) {
+    return footprintMetres > 0.0
+               ? std::clamp(std::log2(wavelength / (2.0 * footprintMetres)), 0.0, 1.0)
+               : 1.0;
+}
+
+// A fixed, irrational shift per octave decorrelates the lattices.
+glm::dvec3 octaveShift(int octave, double phase) {
+    return glm::dvec3(0.3183 * octave + 0.11 + phase, 0.5772 * octave + 0.37,
+                      0.7071 * octave + 0.73 - phase);
+}
+
+}  // namespace
+
+NoiseSource::OctaveWeights NoiseSource::octaveWeights(double footprintMetres) const {
+    const NoiseParameters& p = parameters_;
+    OctaveWeights weights;
+    double wavelength = p.baseWavelength;
+    for (int octave = 0; octave < p.octaves; ++octave) {
+        const double weight = octaveWeight(wavelength, footprintMetres);
+        if (weight <= 0.0)
+            break;
+        weights.continents.push_back(weight);
+        wavelength /= p.lacunarity;
+    }
+    wavelength = p.ridgeWavelength;
+    for (int octave = 0; p.ridges > 0.0 && octave < p.octaves; ++octave) {
+        const double weight = octaveWeight(wavelength, footprintMetres);
+        if (weight <= 0.0)
+            break;
+        weights.ridges.push_back(weight);
+        wavelength /= p.lacunarity;
+    }
+    return weights;
+}
+
+double NoiseSource::height(const glm::dvec3& unitDirection, double footprintMetres) const {
+    return height(unitDirection, octaveWeights(footprintMetres));
+}
+
+double NoiseSource::height(const glm::dvec3& unitDirection, const OctaveWeights& weights) const {
+    const NoiseParameters& p = parameters_;
     double continents = 0.0;
     double amplitude = 1.0;
     double wavelength = p.baseWavelength;
-    for (int octave = 0; octave < p.octaves; ++octave) {
-        const double weight = octaveWeight(wavelength);
-        if (weight <= 0.0) {
-            break;
-        }
-        continents +=
-            amplitude * weight *
-            noise_(unitDirection * (Ellipsoid::kMeanRadius / wavelength) + shift(octave, 0.0));
+    for (std::size_t octave = 0; octave < weights.continents.size(); ++octave) {
+        continents += amplitude * weights.continents[octave] *
+                      noise_(unitDirection * (Ellipsoid::kMeanRadius / wavelength) +
+                             octaveShift(int(octave), 0.0));
         amplitude *= p.gain;
         wavelength /= p.lacunarity;
     }
@@ -66,17 +93,13 @@ double NoiseSource::height(const glm::dvec3& unitDirection, double footprintMetr
         double previous = 1.0;
         amplitude = 1.0;
         wavelength = p.ridgeWavelength;
-        for (int octave = 0; octave < p.octaves; ++octave) {
-            const double weight = octaveWeight(wavelength);
-            if (weight <= 0.0) {
-                break;
-            }
-            const double n =
-                noise_(unitDirection * (Ellipsoid::kMeanRadius / wavelength) + shift(octave, 17.0));
+        for (std::size_t octave = 0; octave < weights.ridges.size(); ++octave) {
+            const double n = noise_(unitDirection * (Ellipsoid::kMeanRadius / wavelength) +
+                                    octaveShift(int(octave), 17.0));
             double signal = 1.0 - 2.0 * std::abs(n);  // crest where the noise crosses zero
             signal *= signal * previous;
             previous = std::clamp(0.4 + signal, 0.0, 1.0);
-            mountains += amplitude * weight * signal;
+            mountains += amplitude * weights.ridges[octave] * signal;
             // Below a few kilometres real relief stops getting steeper with scale:
             // switch to ratio 1/2 (constant slope) so walker-scale terrain stays walkable.
             amplitude *= wavelength > kSelfSimilarBelow ? p.roughness : 0.5;
@@ -104,12 +127,13 @@ Result<TilePointer> NoiseSource::produce(const TileKey& key, TileProvider& provi
         const double footprint =
             Ellipsoid::kMeanRadius *
             std::max(tile->texelHeight(), tile->texelWidth() * std::abs(cosLat));
+        const OctaveWeights weights = octaveWeights(footprint);
         float* row = tile->row(iy);
         for (int ix = begin; ix < end; ++ix) {
             const double longitude = tile->texelLongitude(ix);
             const glm::dvec3 direction(cosLat * std::cos(longitude), cosLat * std::sin(longitude),
                                        sinLat);
-            row[ix - begin] = static_cast<float>(height(direction, footprint));
+            row[ix - begin] = static_cast<float>(height(direction, weights));
         }
     });
     return TilePointer(std::move(tile));

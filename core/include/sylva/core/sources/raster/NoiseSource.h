@@ -43,6 +43,16 @@ public:
 
     const NoiseParameters& parameters() const { return parameters_; }
 
+    // The per-octave fade weights of one footprint (they depend on the footprint only, so
+    // a tile row computes them once for all its texels): continents' octaves, then the
+    // ridged ones; a list ends at the first octave faded out completely.
+    struct OctaveWeights {
+        std::vector<double> continents, ridges;
+    };
+    OctaveWeights octaveWeights(double footprintMetres) const;
+    // height(unitDirection, footprint) with the weights of that footprint, bit for bit.
+    double height(const glm::dvec3& unitDirection, const OctaveWeights& weights) const;
+
 private:
     NoiseParameters parameters_;
     GradientNoise noise_;
