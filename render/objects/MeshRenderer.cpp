@@ -64,14 +64,20 @@ std::unique_ptr<MeshGpuGeometry> upload(const MeshGeometry& geometry) {
 }
 
 // Appends the rows of the model → view transform p ↦ linear * p + translation.
+// One instance's 3×4 row-major transform (kFloatsPerInstance floats) at `out`.
+void writeInstance(float* out, const glm::dmat3& linear, const glm::dvec3& translation) {
+    for (int row = 0; row < 3; ++row) {
+        *out++ = float(linear[0][row]);
+        *out++ = float(linear[1][row]);
+        *out++ = float(linear[2][row]);
+        *out++ = float(translation[row]);
+    }
+}
+
 void appendInstance(std::vector<float>& out, const glm::dmat3& linear,
                     const glm::dvec3& translation) {
-    for (int row = 0; row < 3; ++row) {
-        out.push_back(float(linear[0][row]));
-        out.push_back(float(linear[1][row]));
-        out.push_back(float(linear[2][row]));
-        out.push_back(float(translation[row]));
-    }
+    out.resize(out.size() + kFloatsPerInstance);
+    writeInstance(out.data() + out.size() - kFloatsPerInstance, linear, translation);
 }
 
 // Whether a sphere (view-space centre, radius) may be inside the frustum of `projection`
@@ -230,16 +236,19 @@ void MeshRenderer::drawModel(const ResidentTile& resident, const MeshDrawView& v
     if (visible.empty()) {
         return;
     }
-    instanceScratch_.clear();
-    for (std::size_t p = 0; p < model.parts.size(); ++p) {
-        for (const ModelPlacement* placement : visible) {
-            const std::vector<glm::dmat4> transforms = model.partTransforms(placement->partAngles);
-            const glm::dmat4& part = transforms[p];
-            const glm::dmat3 linear = view.rotation * placement->axes * glm::dmat3(part);
-            const glm::dvec3 translation = view.rotation * (placement->position - view.eye +
-                                                            placement->axes * glm::dvec3(part[3]));
-            appendInstance(instanceScratch_, linear, translation);
-        }
+    // The part transforms once per placement (not once per part and placement), written
+    // into each part's slot of the instance buffer.
+    const std::size_t partCount = model.parts.size();
+    instanceScratch_.assign(partCount * visible.size() * kFloatsPerInstance, 0.0f);
+    for (std::size_t i = 0; i < visible.size(); ++i) {
+        const ModelPlacement& placement = *visible[i];
+        const std::vector<glm::dmat4> transforms = model.partTransforms(placement.partAngles);
+        const glm::dmat3 toView = view.rotation * placement.axes;
+        const glm::dvec3 origin = view.rotation * (placement.position - view.eye);
+        for (std::size_t p = 0; p < partCount; ++p)
+            writeInstance(instanceScratch_.data() + (p * visible.size() + i) * kFloatsPerInstance,
+                          toView * glm::dmat3(transforms[p]),
+                          origin + toView * glm::dvec3(transforms[p][3]));
     }
     const std::size_t bytes = instanceScratch_.size() * sizeof(float);
     glNamedBufferData(instanceBuffer_.get(), GLsizeiptr(bytes), instanceScratch_.data(),
