@@ -38,6 +38,10 @@ find_path(SYLVA_TINYGLTF_INCLUDE_DIR tiny_gltf.h REQUIRED)
 # (libgeos-dev; core/sources/objects/FootprintTriangulator).
 find_package(GEOS 3.10 CONFIG REQUIRED)
 
+# Levels of detail of imported models (sylva_core): OpenMesh's Decimater with the quadric
+# module (libopenmesh-dev; core/sources/objects/MeshSimplifier).
+find_package(OpenMesh CONFIG REQUIRED)
+
 # GL side (sylva_render only).
 find_package(glfw3 3.3 CONFIG REQUIRED)
 pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa)

@@ -64,20 +64,15 @@ std::unique_ptr<MeshGpuGeometry> upload(const MeshGeometry& geometry) {
 }
 
 // Appends the rows of the model → view transform p ↦ linear * p + translation.
-// One instance's 3×4 row-major transform (kFloatsPerInstance floats) at `out`.
-void writeInstance(float* out, const glm::dmat3& linear, const glm::dvec3& translation) {
-    for (int row = 0; row < 3; ++row) {
-        *out++ = float(linear[0][row]);
-        *out++ = float(linear[1][row]);
-        *out++ = float(linear[2][row]);
-        *out++ = float(translation[row]);
-    }
-}
-
+// One instance's 3×4 row-major transform (kFloatsPerInstance floats) appended to `out`.
 void appendInstance(std::vector<float>& out, const glm::dmat3& linear,
                     const glm::dvec3& translation) {
-    out.resize(out.size() + kFloatsPerInstance);
-    writeInstance(out.data() + out.size() - kFloatsPerInstance, linear, translation);
+    for (int row = 0; row < 3; ++row) {
+        out.push_back(float(linear[0][row]));
+        out.push_back(float(linear[1][row]));
+        out.push_back(float(linear[2][row]));
+        out.push_back(float(translation[row]));
+    }
 }
 
 // Whether a sphere (view-space centre, radius) may be inside the frustum of `projection`
@@ -200,26 +195,48 @@ Status MeshRenderer::update(const std::vector<const MeshSource*>& sources, TileP
     return Status::success();
 }
 
-const std::vector<std::unique_ptr<MeshGpuGeometry>>& MeshRenderer::modelParts(
+const std::vector<std::vector<std::unique_ptr<MeshGpuGeometry>>>& MeshRenderer::modelParts(
     const std::shared_ptr<const MeshModel>& model) {
     auto found = models_.find(model.get());
     if (found == models_.end()) {
         ModelEntry entry;
         entry.model = model;
         for (const ModelPart& part : model->parts) {
-            entry.parts.push_back(part.geometry.empty() ? nullptr : upload(part.geometry));
+            std::vector<std::unique_ptr<MeshGpuGeometry>> levels;
+            levels.push_back(part.geometry.empty() ? nullptr : upload(part.geometry));
+            for (const SimplifiedGeometry& level : part.levels)
+                levels.push_back(level.geometry.empty() ? nullptr : upload(level.geometry));
+            entry.parts.push_back(std::move(levels));
         }
         found = models_.emplace(model.get(), std::move(entry)).first;
     }
     return found->second.parts;
 }
 
+namespace {
+
+// The level of detail of one part for a placement whose model-frame metres are `scale`
+// world metres, seen at `metresPerPixel` (0: full detail): the coarsest level whose error
+// stays below half a pixel.
+std::size_t levelFor(const ModelPart& part, double scale, double metresPerPixel) {
+    std::size_t chosen = 0;
+    for (std::size_t k = 0; k < part.levels.size(); ++k)
+        if (part.levels[k].errorMetres * scale <= 0.5 * metresPerPixel)
+            chosen = k + 1;
+    return chosen;
+}
+
+}  // namespace
+
 void MeshRenderer::drawModel(const ResidentTile& resident, const MeshDrawView& view) {
     const MeshTile& tile = *resident.tile;
     const MeshModel& model = *tile.model;
-    const std::vector<std::unique_ptr<MeshGpuGeometry>>& parts = modelParts(tile.model);
-    // Instances grouped by part: part p's instances are [p × count, (p + 1) × count).
-    std::vector<const ModelPlacement*> visible;
+    const auto& parts = modelParts(tile.model);
+    struct Visible {
+        const ModelPlacement* placement;
+        double scale, metresPerPixel;
+    };
+    std::vector<Visible> visible;
     for (const ModelPlacement& placement : tile.placements) {
         const double scale = glm::length(placement.axes[0]);
         const glm::dvec3 center =
@@ -228,43 +245,59 @@ void MeshRenderer::drawModel(const ResidentTile& resident, const MeshDrawView& v
         if (!sphereVisible(view.projection, center, radius)) {
             continue;
         }
-        if (view.pixelAngle > 0.0 && 2.0 * radius < view.pixelAngle * glm::length(center) * 1.0) {
+        const double metresPerPixel = view.pixelAngle * glm::length(center);
+        if (view.pixelAngle > 0.0 && 2.0 * radius < metresPerPixel) {
             continue;  // below a pixel: the terrain colour stands for it
         }
-        visible.push_back(&placement);
+        visible.push_back({&placement, scale, metresPerPixel});
     }
     if (visible.empty()) {
         return;
     }
-    // The part transforms once per placement (not once per part and placement), written
-    // into each part's slot of the instance buffer.
-    const std::size_t partCount = model.parts.size();
-    instanceScratch_.assign(partCount * visible.size() * kFloatsPerInstance, 0.0f);
-    for (std::size_t i = 0; i < visible.size(); ++i) {
-        const ModelPlacement& placement = *visible[i];
-        const std::vector<glm::dmat4> transforms = model.partTransforms(placement.partAngles);
-        const glm::dmat3 toView = view.rotation * placement.axes;
-        const glm::dvec3 origin = view.rotation * (placement.position - view.eye);
-        for (std::size_t p = 0; p < partCount; ++p)
-            writeInstance(instanceScratch_.data() + (p * visible.size() + i) * kFloatsPerInstance,
-                          toView * glm::dmat3(transforms[p]),
-                          origin + toView * glm::dvec3(transforms[p][3]));
+    // Instances grouped by (part, level), each group contiguous in the instance buffer;
+    // the part transforms once per placement.
+    std::vector<std::vector<glm::dmat4>> transforms;
+    transforms.reserve(visible.size());
+    for (const Visible& v : visible)
+        transforms.push_back(model.partTransforms(v.placement->partAngles));
+    struct Group {
+        std::size_t part, level, first = 0, count = 0;
+    };
+    std::vector<Group> groups;
+    instanceScratch_.clear();
+    for (std::size_t p = 0; p < model.parts.size(); ++p) {
+        for (std::size_t level = 0; level < parts[p].size(); ++level) {
+            Group group{p, level, instanceScratch_.size() / kFloatsPerInstance, 0};
+            for (std::size_t i = 0; i < visible.size(); ++i) {
+                if (levelFor(model.parts[p], visible[i].scale, visible[i].metresPerPixel) != level)
+                    continue;
+                const ModelPlacement& placement = *visible[i].placement;
+                const glm::dmat3 toView = view.rotation * placement.axes;
+                appendInstance(instanceScratch_, toView * glm::dmat3(transforms[i][p]),
+                               view.rotation * (placement.position - view.eye) +
+                                   toView * glm::dvec3(transforms[i][p][3]));
+                ++group.count;
+            }
+            if (group.count > 0)
+                groups.push_back(group);
+        }
     }
     const std::size_t bytes = instanceScratch_.size() * sizeof(float);
     glNamedBufferData(instanceBuffer_.get(), GLsizeiptr(bytes), instanceScratch_.data(),
                       GL_STREAM_DRAW);
-    for (std::size_t p = 0; p < parts.size(); ++p) {
-        if (!parts[p]) {
+    for (const Group& group : groups) {
+        const MeshGpuGeometry* geometry = parts[group.part][group.level].get();
+        if (geometry == nullptr) {
             continue;
         }
-        const GLuint va = parts[p]->vertexArray.get();
+        const GLuint va = geometry->vertexArray.get();
         glVertexArrayVertexBuffer(va, kInstanceBinding, instanceBuffer_.get(),
-                                  GLintptr(p * visible.size() * kFloatsPerInstance * sizeof(float)),
+                                  GLintptr(group.first * kFloatsPerInstance * sizeof(float)),
                                   kFloatsPerInstance * sizeof(float));
         glBindVertexArray(va);
-        glDrawElementsInstanced(GL_TRIANGLES, parts[p]->indexCount, GL_UNSIGNED_INT, nullptr,
-                                GLsizei(visible.size()));
-        statistics_.trianglesDrawn += std::size_t(parts[p]->indexCount / 3) * visible.size();
+        glDrawElementsInstanced(GL_TRIANGLES, geometry->indexCount, GL_UNSIGNED_INT, nullptr,
+                                GLsizei(group.count));
+        statistics_.trianglesDrawn += std::size_t(geometry->indexCount / 3) * group.count;
     }
     statistics_.placementsDrawn += visible.size();
 }

@@ -1,5 +1,7 @@
 #include "sylva/core/sources/objects/ModelImporter.h"
 
+#include "sylva/core/sources/objects/MeshSimplifier.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -307,7 +309,7 @@ Status readObj(const std::filesystem::path& path, MeshModel& model) {
     std::vector<glm::vec3> positions, normals;
     std::map<std::string, std::uint32_t> materials;
     std::uint32_t color = 0xffffffffu;
-    model.parts.push_back(ModelPart{"default", -1, glm::dmat4(1.0), {0, 0, 1}, {}});
+    model.parts.push_back(ModelPart{"default", -1, glm::dmat4(1.0), {0, 0, 1}, {}, {}});
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {
         const std::string where = path.string() + ":" + std::to_string(number) + ": ";
@@ -326,7 +328,7 @@ Status readObj(const std::filesystem::path& path, MeshModel& model) {
             std::string name;
             words >> name;
             if (!model.parts.back().geometry.empty() || model.parts.back().name != "default") {
-                model.parts.push_back(ModelPart{name, -1, glm::dmat4(1.0), {0, 0, 1}, {}});
+                model.parts.push_back(ModelPart{name, -1, glm::dmat4(1.0), {0, 0, 1}, {}, {}});
             } else {
                 model.parts.back().name = name;
             }
@@ -433,6 +435,8 @@ Result<std::shared_ptr<const MeshModel>> importModel(const std::filesystem::path
         return Error{file.string() + ": the model has no triangles"};
     }
     computeBounds(*model);
+    for (ModelPart& part : model->parts)
+        part.levels = simplifyLevels(part.geometry);  // levels of detail (MeshSimplifier)
     return std::shared_ptr<const MeshModel>(model);
 }
 

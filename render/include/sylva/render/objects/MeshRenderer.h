@@ -6,7 +6,11 @@
 // Streaming: update() keeps the tiles (MeshSource::kTileLevel) within
 // MeshSettings::maximumDistance of the camera resident, building missing ones through the
 // provider (the sources' elevation) and dropping the rest. Models are uploaded once per
-// MeshModel and drawn instanced: one draw per model part and tile.
+// MeshModel and drawn instanced: one draw per model part, level of detail and tile. Level
+// of detail: each placement draws each part at the coarsest simplified level (ModelPart::
+// levels, OpenMesh's quadric decimation) whose geometric error, scaled by the placement,
+// projects below half a pixel at its distance (full detail for views without a pixel
+// angle, such as the shadow maps).
 //
 // Precision: every tile and placement is transformed relative to the eye in double on the
 // CPU (as InstanceBatch does for plants); the GPU sees float offsets of at most the view
@@ -86,7 +90,7 @@ public:
 private:
     struct ResidentTile;
     MeshRenderer() = default;
-    const std::vector<std::unique_ptr<MeshGpuGeometry>>& modelParts(
+    const std::vector<std::vector<std::unique_ptr<MeshGpuGeometry>>>& modelParts(
         const std::shared_ptr<const MeshModel>& model);
     void drawModel(const ResidentTile& tile, const MeshDrawView& view);
     // draw() with `depthFunction` (GL_GREATER for the reversed-Z camera, GL_LESS for shadows).
@@ -101,7 +105,8 @@ private:
     // Uploaded models; the shared pointer keeps the address from being reused.
     struct ModelEntry {
         std::shared_ptr<const MeshModel> model;
-        std::vector<std::unique_ptr<MeshGpuGeometry>> parts;
+        // Per part: the full geometry, then its simplified levels (ModelPart::levels).
+        std::vector<std::vector<std::unique_ptr<MeshGpuGeometry>>> parts;
     };
     std::map<const MeshModel*, ModelEntry> models_;
     MeshStatistics statistics_;

@@ -39,12 +39,21 @@ struct MeshGeometry {
 // metres, +Z up, +Y forward (glTF's +Y up is converted on import). An articulated part
 // turns about `axis` of its own frame (glTF nodes: +Y, the node's up; OBJ groups: +Z),
 // counter-clockwise seen from the axis tip, by the placement's angle for it.
+// A simplified copy of a part's geometry (MeshSimplifier) for drawing it small:
+// `errorMetres` bounds the distance of the original's vertices from it (model frame, before
+// the placement's scale), so it may be drawn when that error projects below half a pixel.
+struct SimplifiedGeometry {
+    MeshGeometry geometry;
+    double errorMetres = 0.0;
+};
+
 struct ModelPart {
     std::string name;
     int parent = -1;  // index into MeshModel::parts (always smaller than this part's)
     glm::dmat4 local{1.0};
     glm::dvec3 axis{0.0, 0.0, 1.0};  // unit, in the part's frame
     MeshGeometry geometry;
+    std::vector<SimplifiedGeometry> levels;  // ever coarser, ever larger error; may be empty
 };
 
 struct MeshModel {
