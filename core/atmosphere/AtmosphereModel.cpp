@@ -149,6 +149,13 @@ AtmosphereModel::Segment AtmosphereModel::scattered(const glm::dvec3& position,
                                                     const glm::dvec3& direction,
                                                     const glm::dvec3& sun,
                                                     double maxDistance) const {
+    return scattered(position, direction, sun, maxDistance, SunVisibility());
+}
+
+AtmosphereModel::Segment AtmosphereModel::scattered(const glm::dvec3& position,
+                                                    const glm::dvec3& direction,
+                                                    const glm::dvec3& sun, double maxDistance,
+                                                    const SunVisibility& sunVisibility) const {
     bool ground = false;
     const double length = std::min(rayLength(position, direction, ground), maxDistance);
     const double mu = glm::dot(direction, sun);
@@ -171,7 +178,8 @@ AtmosphereModel::Segment AtmosphereModel::scattered(const glm::dvec3& position,
         const double sunLength = rayLength(point, sun, blocked);
         const glm::dvec3 sunTransmittance = transmittanceSteps(
             *this, point, sun, sunLength, blocked, parameters_.bottomRadius, kSingleSunSteps);
-        segment.radiance += weight * sunTransmittance *
+        const double visible = sunVisibility ? sunVisibility(point) : 1.0;
+        segment.radiance += weight * sunTransmittance * visible *
                             (c.rayleighScattering * phaseRayleigh + c.mieScattering * phaseMie);
     }
     segment.transmittance = throughput;

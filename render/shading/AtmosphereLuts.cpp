@@ -14,6 +14,8 @@ constexpr glm::ivec2 kTransmittanceSize{256, 64};
 constexpr glm::ivec2 kMultipleScatteringSize{128, 32};
 constexpr glm::ivec2 kIrradianceSize{64, 16};
 constexpr glm::ivec2 kSkyViewSize{192, 108};
+// The aerial-perspective pass's texture units: 0-1 the LUTs, then the shadow maps.
+constexpr int kAerialShadowMapUnit = 2;
 
 GlTexture texture2d(glm::ivec2 size) {
     GlTexture texture = createGlTexture(GL_TEXTURE_2D);
@@ -152,6 +154,7 @@ void AtmosphereLuts::updateView(const AtmosphereView& view) {
     aerialProgram_.setFloat("uAerialRange", float(aerial_.y));
     glProgramUniform3i(aerialProgram_.id(), aerialProgram_.uniformLocation("uFroxels"), kFroxels.x,
                        kFroxels.y, kFroxels.z);
+    ShadowMaps::bindUniforms(aerialProgram_, view.shadowMaps, kAerialShadowMapUnit);
     glBindImageTexture(0, aerialInscattered_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glBindImageTexture(1, aerialTransmittance_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     aerialProgram_.use();

@@ -4,8 +4,9 @@
 // horizontal surface (64x16), computed once per AtmosphereParameters; and per frame the
 // sky-view LUT (192x108) for the camera's radius and the aerial-perspective froxel
 // volume (64x36 columns x 64 slices, in-scattering and transmittance) for the camera's
-// frustum. All compute shaders (shaders/shading/atmosphere_*.comp); units per unit sun
-// illuminance. Needs a current GL 4.5 context; private to render/shading.
+// frustum, its single scattering shadowed by the sun's shadow maps. All compute shaders
+// (shaders/shading/atmosphere_*.comp); units per unit sun illuminance. Needs a current GL 4.5
+// context; private to render/shading.
 #pragma once
 
 #include <memory>
@@ -18,6 +19,7 @@
 #include "sylva/render/gl/GlHandle.h"
 #include "sylva/render/gl/ShaderLibrary.h"
 #include "sylva/render/gl/ShaderProgram.h"
+#include "sylva/render/shadows/ShadowMaps.h"
 
 namespace sylva::render {
 
@@ -27,6 +29,10 @@ struct AtmosphereView {
     glm::dmat3 viewToEcef{1.0};
     glm::dvec2 projectionScale{1.0};  // projection[0][0], projection[1][1]
     glm::dvec3 sunSphere{1, 0, 0};    // unit
+    // The sun's shadow maps drawn for this camera (not owned): single scattering in the
+    // aerial-perspective volume is shadowed by them (atmosphere_shadow_hook.glsl). Null:
+    // the air is lit everywhere.
+    const ShadowMaps* shadowMaps = nullptr;
 };
 
 class AtmosphereLuts {

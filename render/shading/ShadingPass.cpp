@@ -58,6 +58,7 @@ void ShadingPass::run(const Framebuffer& gbuffer, const Framebuffer& target, con
         frame.viewToEcef = glm::transpose(view);
         frame.projectionScale = {projection[0][0], projection[1][1]};
         frame.sunSphere = glm::normalize(toSphereSpace(settings.sunDirection));
+        frame.shadowMaps = settings.shadowedInscattering ? settings.shadowMaps : nullptr;
         atmosphere_->updateView(frame);
     }
     target.bind();
@@ -81,35 +82,10 @@ void ShadingPass::run(const Framebuffer& gbuffer, const Framebuffer& target, con
     glBindTextureUnit(1, gbuffer.colorTexture(1));
     glBindTextureUnit(2, gbuffer.depthTexture());
     atmosphere_->bind(program_, 3);
-    setShadowUniforms(settings.shadowMaps);
+    ShadowMaps::bindUniforms(program_, settings.shadowMaps, kShadowMapUnit);
     glBindVertexArray(emptyVertexArray_.get());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
-}
-
-void ShadingPass::setShadowUniforms(const ShadowMaps* shadowMaps) {
-    const int count = shadowMaps != nullptr ? int(shadowMaps->cascades().size()) : 0;
-    program_.setInt("uShadowMap", kShadowMapUnit);
-    program_.setInt("uShadowCascadeCount", count);
-    if (count == 0) {
-        return;  // shadows.glsl never samples the map then
-    }
-    const std::vector<glm::mat4> matrices = shadowMaps->shadowMatrices();
-    std::vector<float> texels, biases;
-    for (const ShadowCascade& cascade : shadowMaps->cascades()) {
-        texels.push_back(float(cascade.texelSize));
-        // One texel in depth units: the depth range is three radii (ShadowCascades).
-        biases.push_back(float(cascade.texelSize / (3.0 * cascade.radius)));
-    }
-    glProgramUniformMatrix4fv(program_.id(), program_.uniformLocation("uShadowMatrices[0]"), count,
-                              GL_FALSE, &matrices[0][0][0]);
-    glProgramUniform1fv(program_.id(), program_.uniformLocation("uShadowTexelSizes[0]"), count,
-                        texels.data());
-    glProgramUniform1fv(program_.id(), program_.uniformLocation("uShadowDepthBias[0]"), count,
-                        biases.data());
-    program_.setFloat("uShadowResolution", float(shadowMaps->resolution()));
-    program_.setMat3("uShadowLightRotation", glm::mat3(shadowMaps->lightRotation()));
-    glBindTextureUnit(kShadowMapUnit, shadowMaps->texture());
 }
 
 }  // namespace sylva::render

@@ -99,4 +99,30 @@ std::vector<glm::mat4> ShadowMaps::shadowMatrices() const {
     return out;
 }
 
+void ShadowMaps::bindUniforms(ShaderProgram& program, const ShadowMaps* maps, int textureUnit) {
+    const int count = maps != nullptr ? int(maps->cascades().size()) : 0;
+    program.setInt("uShadowMap", textureUnit);
+    program.setInt("uShadowCascadeCount", count);
+    if (count == 0) {
+        return;  // shadows.glsl never samples the map then
+    }
+    const std::vector<glm::mat4> matrices = maps->shadowMatrices();
+    std::vector<float> texels, biases;
+    for (const ShadowCascade& cascade : maps->cascades()) {
+        texels.push_back(float(cascade.texelSize));
+        // One texel in depth units: the depth range is three radii (ShadowCascades).
+        biases.push_back(float(cascade.texelSize / (3.0 * cascade.radius)));
+    }
+    // Uniforms a stage does not use (location -1) are ignored by GL.
+    glProgramUniformMatrix4fv(program.id(), program.uniformLocation("uShadowMatrices[0]"), count,
+                              GL_FALSE, &matrices[0][0][0]);
+    glProgramUniform1fv(program.id(), program.uniformLocation("uShadowTexelSizes[0]"), count,
+                        texels.data());
+    glProgramUniform1fv(program.id(), program.uniformLocation("uShadowDepthBias[0]"), count,
+                        biases.data());
+    program.setFloat("uShadowResolution", float(maps->resolution()));
+    program.setMat3("uShadowLightRotation", glm::mat3(maps->lightRotation()));
+    glBindTextureUnit(GLuint(textureUnit), maps->texture());
+}
+
 }  // namespace sylva::render

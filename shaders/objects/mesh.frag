@@ -14,5 +14,5 @@ void main() {
         normal = -normal;  // open model surfaces seen from behind
     }
     outAlbedo = vec4(vColor, 1.0);
-    outNormal = vec4(normal, 0.0);
+    outNormal = vec4(normal, 3.0);  // material 3: built object (shade.frag)
 }

@@ -7,7 +7,10 @@
 // t = start + near ((1 + range / near)^s - 1), s = slice / (slices - 1), so the first
 // kilometres get fine slices and a view from space reaches the far limb; the shading
 // pass maps distances back the same way (atmosphere_lookup.glsl). Single scattering is
-// multiplied by the shadow hook (shadowed in-scattering). Computed per frame.
+// multiplied by the shadow hook (shadowed in-scattering): with shadow maps, each substep
+// averages SHADOW_TAPS lookups at stratified positions, offset per column by interleaved
+// gradient noise (Jimenez 2014) so the steps' staircase turns into a fine dither that
+// the volume's trilinear lookup smooths. Computed per frame.
 #include "atmosphere_model.glsl"
 #include "atmosphere_integrate.glsl"
 #include "atmosphere_shadow_hook.glsl"
@@ -24,6 +27,25 @@ uniform float uAerialRange;     // metres
 uniform ivec3 uFroxels;
 
 const int SUBSTEPS = 2;
+const int SHADOW_TAPS = 2;  // per substep: 4 shadow-map lookups per slice
+
+// Interleaved gradient noise in [0, 1): a fixed dither per froxel column.
+float columnJitter(ivec2 column) {
+    return fract(52.9829189 * fract(dot(vec2(column), vec2(0.06711056, 0.00583715))));
+}
+
+// The sun's visible fraction over [t0, t1] of the ray (offsets from the camera).
+float segmentSunVisibility(vec3 direction, float t0, float t1, float jitter) {
+    if (!atmosphereHasShadows()) {
+        return 1.0;
+    }
+    float sum = 0.0;
+    for (int k = 0; k < SHADOW_TAPS; ++k) {
+        float t = t0 + (t1 - t0) * (float(k) + jitter) / float(SHADOW_TAPS);
+        sum += atmosphereSunVisibility(fromSphereSpace(direction * t));
+    }
+    return sum / float(SHADOW_TAPS);
+}
 
 float sliceDistance(float start, int slice) {
     float s = float(slice) / float(uFroxels.z - 1);
@@ -50,6 +72,7 @@ void main() {
     vec3 radiance = vec3(0.0);
     vec3 transmittance = vec3(1.0);
     float previous = start;
+    float jitter = columnJitter(column);
     for (int slice = 0; slice < uFroxels.z; ++slice) {
         float target = min(sliceDistance(start, slice), max(end, start));
         if (shell.x <= shell.y && shell.y > 0.0 && target > previous) {
@@ -57,8 +80,7 @@ void main() {
             for (int i = 0; i < SUBSTEPS; ++i) {
                 float t0 = previous + step * float(i);
                 float t1 = t0 + step;
-                float visibility =
-                    atmosphereSunVisibility(fromSphereSpace(direction * (0.5 * (t0 + t1))));
+                float visibility = segmentSunVisibility(direction, t0, t1, jitter);
                 scatterSegment(uCameraSphere, direction, t0, t1, uSunSphere, phaseRayleigh,
                                phaseMie, visibility, radiance, transmittance);
             }

@@ -5,6 +5,7 @@
 // sRGB (and, when the target has a second attachment, the exposed linear radiance).
 #include "atmosphere_lookup.glsl"
 #include "shadows.glsl"
+#include "schlick_brdf.glsl"
 
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outColor;
@@ -22,6 +23,15 @@ uniform vec3 uSunView;          // unit vector towards the sun, view space
 uniform vec3 uSunEcef;
 uniform bool uAtmosphere;
 uniform float uExposure;  // 1 / (1.2 * 2^EV100) x the project's exposure scale
+
+// Materials of the G-buffer (normal.w, rounded): 0 ground (terrain.frag; plants until
+// they write their own), 1 water (terrain.frag), 2 leaves, 3 built objects
+// (objects/mesh.frag). Schlick roughness r and normal-incidence reflectance f0 of each
+// non-water material: soil and grass are nearly matte (r 0.8), leaves have a waxy
+// cuticle (r 0.5), paint, tiles and metal sheet of buildings and turbines r 0.6; f0 0.04
+// for a dielectric of refractive index ~1.5 ((n - 1)² / (n + 1)²).
+const vec2 MATERIAL_ROUGHNESS_F0[4] =
+    vec2[4](vec2(0.8, 0.04), vec2(0.05, 0.02), vec2(0.5, 0.04), vec2(0.6, 0.04));
 
 vec3 linearToSrgb(vec3 c) {
     c = clamp(c, 0.0, 1.0);
@@ -57,9 +67,18 @@ void main() {
         // albedo.a: ambient occlusion (1 for terrain; per primitive for plants, §6.5).
         vec3 ambient = atmosphereSkyIrradiance(surfaceSphere, sun) * (0.5 + 0.5 * dot(normal, upView)) *
                        albedo.a;
-        // Lambertian: radiance = albedo / pi * irradiance.
-        vec3 surface = albedo.rgb / PI * (sunLight * sunDiffuse + ambient);
-        if (normalMaterial.w > 0.5) {  // water: sun glint and a little sky reflection
+        int material = clamp(int(normalMaterial.w + 0.5), 0, 3);
+        vec3 surface;
+        if (material != 1) {
+            // Sunlight through Schlick's BRDF (seed 001 §7.1); skylight Lambertian (the
+            // sky is a broad source: the specular lobe averages out).
+            vec2 roughnessF0 = MATERIAL_ROUGHNESS_F0[material];
+            surface = schlickBrdf(albedo.rgb, roughnessF0.x, roughnessF0.y, normal, uSunView,
+                                  -directionView) *
+                          sunLight * sunDiffuse +
+                      albedo.rgb / PI * ambient;
+        } else {  // water: Lambertian body, sun glint and a little sky reflection
+            surface = albedo.rgb / PI * (sunLight * sunDiffuse + ambient);
             vec3 reflected = reflect(directionView, normal);
             float glint = pow(max(dot(reflected, uSunView), 0.0), 1500.0) * 6.0;
             float fresnel = 0.02 + 0.98 * pow(1.0 - max(dot(-directionView, normal), 0.0), 5.0);

@@ -16,6 +16,8 @@
 // costs ~0.1 s); never fails.
 #pragma once
 
+#include <functional>
+
 #include <glm/glm.hpp>
 
 #include "sylva/core/atmosphere/AtmosphereParameters.h"
@@ -47,6 +49,14 @@ public:
     };
     Segment scattered(const glm::dvec3& position, const glm::dvec3& direction,
                       const glm::dvec3& sun, double maxDistance = 1e12) const;
+    // The same with shadowed in-scattering (seed 001 §7.2): `sunVisibility(point)` is the
+    // fraction of the sun seen from a sphere-space point of the ray (0 in the shadow of
+    // terrain), multiplying single scattering there; multiple scattering (skylight) is
+    // not shadowed, as in the shaders.
+    using SunVisibility = std::function<double(const glm::dvec3& pointSphere)>;
+    Segment scattered(const glm::dvec3& position, const glm::dvec3& direction,
+                      const glm::dvec3& sun, double maxDistance,
+                      const SunVisibility& sunVisibility) const;
 
     const AtmosphereParameters& parameters() const { return parameters_; }
 

@@ -29,6 +29,10 @@ struct ShadingSettings {
     // The sun's cascaded shadow maps drawn for this camera (not owned; null or no
     // cascades: no shadows). Looked up by shaders/shading/shadows.glsl.
     const ShadowMaps* shadowMaps = nullptr;
+    // Whether `shadowMaps` also shadow the air (shadowed in-scattering, seed 001 §7.2):
+    // single scattering in the aerial perspective only where the sun reaches. Off: the
+    // air is lit everywhere (the state before shadowed in-scattering; tests compare).
+    bool shadowedInscattering = true;
 };
 
 class AtmosphereLuts;
@@ -53,7 +57,6 @@ public:
 
 private:
     ShadingPass() = default;
-    void setShadowUniforms(const ShadowMaps* shadowMaps);
     ShaderProgram program_;
     GlVertexArray emptyVertexArray_;  // full-screen triangle: no attributes
     std::unique_ptr<AtmosphereLuts> atmosphere_;

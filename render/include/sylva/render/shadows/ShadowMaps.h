@@ -15,6 +15,7 @@
 
 #include "sylva/core/base/Result.h"
 #include "sylva/render/gl/GlHandle.h"
+#include "sylva/render/gl/ShaderProgram.h"
 #include "sylva/render/shadows/ShadowCaster.h"
 
 namespace sylva::render {
@@ -38,6 +39,12 @@ public:
     std::uint32_t texture() const { return texture_.get(); }
     const glm::dmat3& lightRotation() const { return lightRotation_; }
     int resolution() const { return resolution_; }
+
+    // Sets the uniforms of shaders/shading/shadows.glsl in `program` (any stage that
+    // includes it: the shading pass, the aerial-perspective compute pass) and binds the
+    // depth array to `textureUnit`. `maps` null or without cascades: uShadowCascadeCount
+    // 0, so shadows.glsl answers "lit" without sampling.
+    static void bindUniforms(ShaderProgram& program, const ShadowMaps* maps, int textureUnit);
 
 private:
     ShadowMaps() = default;
