@@ -15,6 +15,7 @@
 #include "GraphChecker.h"
 #include "MakeValue.h"
 #include "NameScope.h"
+#include "PlantSeasonChecker.h"
 #include "ValueChecker.h"
 #include "sylva/core/geo/ProjectedCoordinates.h"
 #include "sylva/dsl/EditDistance.h"
@@ -159,6 +160,7 @@ ProjectModel Resolver::checkBlocks(const std::filesystem::path& path) {
 void Resolver::addToModel(ProjectModel& model, Block block) {
     const std::string keyword = block.keyword;
     if (keyword == "source") {
+        checkPlantSeasons(block, diagnostics_);
         model.sources.push_back(std::move(block));
     } else if (keyword == "camera") {
         model.cameras.push_back(std::move(block));

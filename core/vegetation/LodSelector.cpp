@@ -58,6 +58,7 @@ SpeciesLod LodSelector::describe(const PlantAsset& asset, double transitionBand)
     SpeciesLod species;
     species.sphereCenter = 0.5f * (lod.boundsMinimum + lod.boundsMaximum);
     species.sphereRadius = 0.5f * glm::length(lod.boundsMaximum - lod.boundsMinimum);
+    species.height = lod.boundsMaximum.z;
     species.ellipsoidCount = static_cast<std::uint32_t>(lod.ellipsoids.size());
     species.lineCount = static_cast<std::uint32_t>(lod.lines.size());
 
@@ -121,12 +122,12 @@ InstanceBatch LodSelector::makeBatch(const glm::dvec3& origin,
         instance.base = glm::vec3(p.baseEcef - origin);
         instance.axes[0] = glm::vec3(right * double(p.scale));
         instance.axes[1] = glm::vec3(forward * double(p.scale));
-        instance.axes[2] = glm::vec3(up * double(p.scale));
+        instance.axes[2] = glm::vec3(up * double(p.scale * p.heightScale));
         const SpeciesLod& lod = species[p.species];
         instance.center = instance.base + instance.axes[0] * lod.sphereCenter.x +
                           instance.axes[1] * lod.sphereCenter.y +
                           instance.axes[2] * lod.sphereCenter.z;
-        instance.radius = lod.sphereRadius * p.scale;
+        instance.radius = lod.sphereRadius * p.scale * std::max(1.0f, p.heightScale);
         instance.tint = p.tint;
         instance.species = p.species;
         // A hash of the position's bits: neighbours dither differently.

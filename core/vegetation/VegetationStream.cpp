@@ -12,6 +12,7 @@ namespace sylva {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+
 constexpr double kMetresPerRadian =
     6367000.0;                  // mean meridian radius: distances for selection only
 constexpr int kRefinement = 2;  // levels finer than the coarse level near the camera
@@ -89,11 +90,30 @@ std::vector<TileKey> VegetationStream::tilesAround(double latitude, double longi
     return out;
 }
 
+bool VegetationStream::grow(const PlantSeasons& seasons, const PlantDate& date, double modelHeight,
+                            InstancePlacement& placement) {
+    if (!seasons.planted()) {
+        return true;
+    }
+    const std::optional<GrowthScale> scale = seasons.scaleAt(date, std::max(modelHeight, 1e-3));
+    if (!scale || scale->crown < 1e-3 || scale->height < 1e-3) {
+        return false;
+    }
+    placement.scale = float(placement.scale * scale->crown);
+    placement.heightScale = float(scale->height / scale->crown);
+    return true;
+}
+
 Result<std::vector<const InstanceBatch*>> VegetationStream::update(
     const std::vector<VegetationStreamLayer>& layers, TileProvider& provider, const Camera& camera,
     const std::vector<SpeciesLod>& species, const VegetationStreamSettings& settings) {
     ++frame_;
     statistics_ = {};
+    if (const std::string date = settings.date ? settings.date->text() : std::string();
+        date != dateOfBatches_) {
+        batches_.clear();  // grown for another date
+        dateOfBatches_ = date;
+    }
     std::vector<const InstanceBatch*> out;
     // Streaming radius: where the largest plant still covers minimumPixels, at most the
     // maximum distance, and measured along the ground.
@@ -158,6 +178,10 @@ Result<std::vector<const InstanceBatch*>> VegetationStream::update(
                     p.scale = instance.scale;
                     p.tint = instance.tint;
                     p.species = std::uint32_t(layer.species[instance.species]);
+                    if (settings.date && !grow(layer.source->seasons(), *settings.date,
+                                               species[p.species].height, p)) {
+                        continue;  // not planted yet
+                    }
                     placements.push_back(p);
                 }
                 const double centreLatitude = 0.5 * (key.north() + key.south());

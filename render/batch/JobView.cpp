@@ -58,6 +58,11 @@ Result<JobView> JobView::forJob(const ProjectModel& model, const RenderJob& job,
 RenderSettings JobView::settingsFor(const RenderSetup& setup, const RenderJob& job) const {
     RenderSettings settings = setup.settings;
     settings.sunDirection = sun;
+    if (!settings.plantDate && job.time) {  // render `date` wins; else the view's date
+        if (Result<PlantDate> day = PlantDate::fromDateTime(*job.time)) {
+            settings.plantDate = day.value();
+        }
+    }
     settings.linearOutput = ImageWriter::isExr(job.output);
     if (camera.print.valid()) {  // a print format fixes this camera's pixel size
         settings.width = camera.print.pixelsWide();

@@ -6,6 +6,7 @@
 
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/model/BlockReader.h"
+#include "sylva/core/seasons/PlantDate.h"
 
 namespace sylva::render {
 namespace {
@@ -61,6 +62,15 @@ Result<RenderSetup> RenderSetup::fromModel(const ProjectModel& model, int overri
     const GeoPosition sun = renderBlock.geo("sun").value_or(GeoPosition{0.4, 0.35, std::nullopt});
     setup.defaultSun = Ellipsoid::surfaceNormal(sun.latitude, sun.longitude);
     settings.sunDirection = setup.defaultSun;
+    if (const Value* date = renderBlock.value("date"); date && date->get<std::string>()) {
+        Result<DateTime> parsed = DateTime::parse(*date->get<std::string>());
+        Result<PlantDate> day =
+            parsed ? PlantDate::fromDateTime(parsed.value()) : Result<PlantDate>(parsed.error());
+        if (!day) {
+            return Error{renderBlock.where("date") + "date: " + day.error().message};
+        }
+        settings.plantDate = day.value();
+    }
     settings.atmosphere = renderBlock.boolean("atmosphere", true);
     settings.ocean = renderBlock.boolean("ocean", true);
     settings.exposure = renderBlock.optionalNumber("exposure").value_or(1.0);

@@ -1,4 +1,5 @@
 #include "sylva/render/scene/SceneRenderer.h"
+#include "sylva/core/vegetation/LeafStates.h"
 
 #include <glad/gl.h>
 
@@ -146,6 +147,9 @@ Result<std::vector<const InstanceBatch*>> SceneRenderer::streamVegetation(
     stream.maximumDistance = settings.vegetation.maximumDistance;
     stream.heightAboveGround = statistics_.heightAboveTerrain;
     stream.wait = settings.waitForTiles;
+    stream.date = settings.plantDate;  // growth; and the season of each species:
+    vegetation_->setLeafStates(leafStates(streamLayers.value(), vegetation_->speciesCount(),
+                                          settings.plantDate, camera.geodetic.latitude));
     Result<std::vector<const InstanceBatch*>> streamed = vegetationStream_.update(
         streamLayers.value(), provider, camera, vegetation_->speciesLods(), stream);
     if (!streamed) {

@@ -57,6 +57,7 @@ struct VegetationMesh {
     GLsizei indexCount = 0;
     glm::vec4 baseColor{1.0f};
     float alphaCutoff = -1.0f;
+    bool leaves = false;  // leaf triangles (thinned and recoloured by the season)
 };
 
 struct VegetationRenderer::Species {
@@ -64,6 +65,7 @@ struct VegetationRenderer::Species {
     std::uint32_t firstEllipsoid = 0, firstLine = 0;
     std::vector<std::unique_ptr<VegetationMesh>> mesh;
     std::vector<std::vector<std::unique_ptr<VegetationMesh>>> billboardLevels;
+    float leafLuminance = 0.1f;  // area-weighted mean luminance of the leaf ellipsoids
 };
 
 namespace {
@@ -75,6 +77,19 @@ struct MeshVertex {
 };
 
 // One VegetationMesh per PlantMesh with triangles; textures as sRGB with mipmaps.
+// Area-weighted mean luminance (Rec. 709, linear) of the finest ellipsoids, which stand
+// for the leaves: the reference the autumn colour is scaled by (seasonalLeafColour).
+float meanLeafLuminance(const PlantLod& lod) {
+    double sum = 0.0, weight = 0.0;
+    for (const LodEllipsoid& e : lod.ellipsoids) {
+        if (e.level == 0) {
+            sum += double(e.weight) * glm::dot(e.color, glm::vec3(0.2126f, 0.7152f, 0.0722f));
+            weight += e.weight;
+        }
+    }
+    return weight > 0.0 ? float(sum / weight) : 0.1f;
+}
+
 std::vector<std::unique_ptr<VegetationMesh>> uploadModel(const PlantModel& model,
                                                          GLuint instanceBuffer) {
     std::vector<std::unique_ptr<VegetationMesh>> meshes;
@@ -84,6 +99,7 @@ std::vector<std::unique_ptr<VegetationMesh>> uploadModel(const PlantModel& model
             continue;
         }
         auto mesh = std::make_unique<VegetationMesh>();
+        mesh->leaves = source.part == PlantPart::Leaf;
         std::vector<MeshVertex> vertices(source.positions.size());
         for (std::size_t i = 0; i < vertices.size(); ++i) {
             vertices[i].position = source.positions[i];
@@ -256,10 +272,14 @@ Result<std::uint32_t> VegetationRenderer::addSpecies(std::shared_ptr<const Plant
                          lines.data(), 0);
 
     species->mesh = uploadModel(asset->model, instanceBuffer_.get());
+    species->leafLuminance = meanLeafLuminance(lod);
     SpeciesLod description = LodSelector::describe(*asset, transitionBand);
     for (const BillboardLevel& level : billboardLevels(*asset)) {
         species->billboardLevels.push_back(uploadModel(
             BillboardCloudBuilder::levelModel(level, asset->name), instanceBuffer_.get()));
+        for (const std::unique_ptr<VegetationMesh>& mesh : species->billboardLevels.back()) {
+            mesh->leaves = false;  // leaves and branches share the texels: not thinned
+        }
         description.billboardError.push_back(
             description.billboardError.empty() ? 0.0f : float(level.epsilon / kBillboardPixels));
     }
@@ -355,6 +375,7 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches,
             }
             const Species& species = *species_[run.species];
             program.setFloat("uMeshError", handover ? lods_[run.species].meshError : 0.0f);
+            setLeafUniforms(program, run.species, pass == 0);
             if (pass == 1) {
                 glDrawArraysInstancedBaseInstance(GL_TRIANGLES, GLint(species.firstLine * 6),
                                                   GLsizei(count * 6), GLsizei(run.instanceCount),
@@ -405,6 +426,19 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches,
     glBindVertexArray(0);
 }
 
+void VegetationRenderer::setLeafStates(std::vector<LeafState> states) {
+    leafStates_ = std::move(states);
+}
+
+void VegetationRenderer::setLeafUniforms(ShaderProgram& program, std::uint32_t species,
+                                         bool leaves) {
+    const LeafState state =
+        leaves && species < leafStates_.size() ? leafStates_[species] : LeafState{};
+    program.setFloat("uLeafFraction", state.leafFraction);
+    const float luminance = std::max(species_[species]->leafLuminance, 1e-4f);
+    program.setVec4("uAutumn", glm::vec4(state.autumnColour / luminance, state.autumn));
+}
+
 bool VegetationRenderer::mayExceedPointSize(const DrawRun& run, double pixelAngle,
                                             double cornerTangent, double near) const {
     const SpeciesLod& lod = lods_[run.species];
@@ -449,6 +483,8 @@ void VegetationRenderer::drawMeshes(const std::vector<std::unique_ptr<Vegetation
         meshProgram_.setFloat("uAlphaCutoff", mesh->alphaCutoff);
         meshProgram_.setInt("uHasTexture", mesh->texture != 0 ? 1 : 0);
         meshProgram_.setFloat("uAmbientOcclusion", 1.0f);
+        meshProgram_.setInt("uLeaves", mesh->leaves ? 1 : 0);
+        setLeafUniforms(meshProgram_, run.species, mesh->leaves);
         glBindTextureUnit(0, mesh->texture);
         glBindVertexArray(mesh->vertexArray.get());
         glDrawElementsInstancedBaseInstance(GL_TRIANGLES, mesh->indexCount, GL_UNSIGNED_INT,
@@ -533,6 +569,7 @@ void VegetationRenderer::drawShadowRuns(const ShadowView& view,
             const Species& species = *species_[run.species];
             const SpeciesLod& lod = lods_[run.species];
             program.setFloat("uMeshError", handover ? lod.meshError : 0.0f);
+            setLeafUniforms(program, run.species, pass == 0);
             if (pass == 1) {
                 glDrawArraysInstancedBaseInstance(GL_TRIANGLES, GLint(species.firstLine * 6),
                                                   GLsizei(count * 6), GLsizei(run.instanceCount),

@@ -60,8 +60,8 @@ void main() {
     vec2 fade = intervalFade(error, max(e.axis2.w, uMeshError), e.color.w, uBand);
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // culled unless set below
     gl_PointSize = 1.0;
-    if (fade.x <= fade.y) {
-        return;
+    if (fade.x <= fade.y || uLeafFraction <= 0.0) {
+        return;  // faded out, or no leaves (leaf-off)
     }
     mat3 instance = mat3(aAxisX.xyz, aAxisY.xyz, aAxisZ.xyz);
     vec3 center = instance * e.centerNoise.xyz + aOrigin.xyz;
@@ -125,7 +125,7 @@ void main() {
     vToLocal = toLocal;
     vLocalCenter = toLocal * center;
     vPlane = vec4(w, nearDistance);
-    vColorAo = vec4(e.color.rgb * aTint.rgb, e.axis1.w);
-    vFadeNoise = vec4(fade, exp2(e.centerNoise.w), e.axis0.w);
+    vColorAo = vec4(seasonalLeafColour(e.color.rgb) * aTint.rgb, e.axis1.w);
+    vFadeNoise = vec4(fade, exp2(e.centerNoise.w), seasonalThreshold(e.axis0.w));
     vSeedDither = uvec2(ellipsoidNoiseSeed(e.centerNoise.xyz), floatBitsToUint(aAxisY.w));
 }

@@ -14,6 +14,7 @@ uniform bool uHasTexture;
 uniform vec4 uBaseColor;     // linear RGB, alpha
 uniform float uAlphaCutoff;  // < 0: opaque
 uniform float uAmbientOcclusion;
+uniform bool uLeaves;  // leaf triangles: thinned and recoloured by the season
 
 layout(location = 0) out vec4 outAlbedo;
 layout(location = 1) out vec4 outNormal;
@@ -29,6 +30,15 @@ void main() {
     }
     if (uAlphaCutoff >= 0.0 && color.a < uAlphaCutoff) {
         discard;
+    }
+    if (uLeaves) {
+        // A share uLeafFraction of the leaf triangles is kept, chosen per triangle and
+        // instance by a hash, so neighbouring trees lose different leaves.
+        uint kept = pcg3d(uvec3(uint(gl_PrimitiveID), floatBitsToUint(vTintDither.w), 0x5EA5u)).x;
+        if (float(kept >> 8u) / 16777216.0 >= uLeafFraction) {
+            discard;
+        }
+        color.rgb = seasonalLeafColour(color.rgb);
     }
     vec3 normal = normalize(vNormal);
     if (dot(normal, vView) > 0.0) {

@@ -54,3 +54,22 @@ float ellipsoidNoise(vec3 q, float cells, uint seed) {
 vec3 ellipsoidNoise3(vec3 q, float cells, uint seed) {
     return vec3(ellipsoidNoiseHash(q, cells, seed) >> 8u) / 16777216.0;
 }
+
+// Seasons (issue 21 item 3, core/seasons/Phenology.h): the species' leaf state of the
+// render date. Leaf density thins the crown where the level of detail draws it: an
+// ellipsoid of alpha threshold t keeps the noise cells above t, a share 1 − t; with a
+// leaf fraction f it keeps a share f (1 − t), i.e. threshold 1 − f (1 − t).
+uniform float uLeafFraction = 1.0;
+// rgb: the autumn colour divided by the species' mean leaf luminance, w: how far the
+// leaves have turned. A leaf of luminance L turns towards rgb × L, so the crown's
+// light and shade variation survives the colour change.
+uniform vec4 uAutumn = vec4(0.0);
+
+float seasonalThreshold(float threshold) {
+    return 1.0 - uLeafFraction * (1.0 - max(threshold, 0.0));
+}
+
+vec3 seasonalLeafColour(vec3 colour) {
+    float luminance = dot(colour, vec3(0.2126, 0.7152, 0.0722));
+    return mix(colour, uAutumn.rgb * luminance, uAutumn.w);
+}

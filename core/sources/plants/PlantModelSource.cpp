@@ -126,6 +126,10 @@ Result<std::unique_ptr<PlantModelSource>> PlantModelSource::make(std::string nam
         new PlantModelSource(std::move(name), std::move(parameters), label));
 }
 
+LeafHabit PlantModelSource::leafHabit() const {
+    return parameters_.leafHabit.value_or(Phenology::habitOfPlantPreset(parameters_.preset));
+}
+
 Result<std::unique_ptr<Source>> PlantModelSource::create(const SourceBuildContext& context) {
     const BlockReader& reader = context.reader;
     PlantModelParameters p;
@@ -139,6 +143,9 @@ Result<std::unique_ptr<Source>> PlantModelSource::create(const SourceBuildContex
     }
     p.seed = static_cast<std::uint64_t>(reader.optionalNumber("seed").value_or(1.0));
     p.billboards = reader.boolean("billboards", false);
+    if (const Value* habit = reader.value("phenology"); habit && habit->get<Word>()) {
+        p.leafHabit = Phenology::habitNamed(habit->get<Word>()->text);
+    }
     const auto resolve = [&](const std::string& text) {
         std::filesystem::path path(text);
         if (!text.empty() && path.is_relative()) {

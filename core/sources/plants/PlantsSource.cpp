@@ -280,6 +280,7 @@ Result<std::unique_ptr<PlantsSource>> PlantsSource::make(std::string name, const
         (features == nullptr || source->parameters_.speciesAttribute.empty())) {
         return Error{"no species: give `species` (name = share) for scattering"};
     }
+    source->setSeasons(PlantSeasons());
     return source;
 }
 
@@ -801,6 +802,14 @@ Result<std::unique_ptr<Source>> PlantsSource::create(const SourceBuildContext& c
     if (Status attached = made.value()->attachModels(context); !attached) {
         return attached.error();
     }
+    SourceLocation problem;
+    Result<PlantSeasons> seasons =
+        PlantSeasons::read(context.block, made.value()->speciesNames(), &problem);
+    if (!seasons) {
+        return Error{problem.toString() + ": source '" + context.block.name +
+                     "': " + seasons.error().message};
+    }
+    made.value()->setSeasons(std::move(seasons.value()));
     Result<const Source*> exclude = context.input("exclude", false);
     if (!exclude) {
         return exclude.error();
@@ -813,6 +822,17 @@ Result<std::unique_ptr<Source>> PlantsSource::create(const SourceBuildContext& c
         made.value()->excludeInside(footprints);
     }
     return std::unique_ptr<Source>(std::move(made.value()));
+}
+
+void PlantsSource::setSeasons(PlantSeasons seasons) {
+    seasons_ = std::move(seasons);
+    phenology_.clear();
+    for (std::size_t i = 0; i < speciesNames_.size(); ++i) {
+        const LeafHabit habit = i < models_.size() && models_[i] != nullptr
+                                    ? models_[i]->leafHabit()
+                                    : LeafHabit::Evergreen;
+        phenology_.push_back(seasons_.phenologyOf(speciesNames_[i], habit));
+    }
 }
 
 // Models: species name = model source name; every species needs one.

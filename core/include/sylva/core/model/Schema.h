@@ -104,5 +104,7 @@ void addLanguageSchema(SchemaRegistry& registry);
 void addAnalysisSchema(SchemaRegistry& registry);
 // The `buildings` and `objects` source kinds (ObjectsSchema.cpp).
 void addObjectsSchema(SchemaRegistry& registry);
+// `planted`, `growth`, `phenology` (plants, plant_model) and render `date` (SeasonsSchema.cpp).
+void addSeasonsSchema(SchemaRegistry& registry);
 
 }  // namespace sylva

@@ -71,6 +71,9 @@ struct InstancePlacement {
     double latitude = 0.0, longitude = 0.0;  // radians (to build the local frame)
     float heading = 0.0f;
     float scale = 1.0f;
+    // The up axis is scaled by scale × heightScale (growth: a young tree's height and
+    // crown grow at different rates, GrowthCurve).
+    float heightScale = 1.0f;
     glm::vec3 tint{1.0f};
     std::uint32_t species = 0;
 };
@@ -79,6 +82,7 @@ struct InstancePlacement {
 struct SpeciesLod {
     glm::vec3 sphereCenter{0.0f};  // model frame, metres
     float sphereRadius = 0.0f;     // metres
+    float height = 0.0f;           // top of the model above the stem base, metres
     float meshError = 0.0f;        // below this error the source mesh is drawn (0: never)
     std::uint32_t ellipsoidCount = 0;
     std::uint32_t lineCount = 0;

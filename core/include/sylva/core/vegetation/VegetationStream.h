@@ -15,11 +15,14 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "sylva/core/base/Result.h"
 #include "sylva/core/scene/Camera.h"
+#include "sylva/core/seasons/PlantDate.h"
 #include "sylva/core/sources/plants/PlantsSource.h"
 #include "sylva/core/vegetation/LodSelector.h"
 
@@ -38,6 +41,10 @@ struct VegetationStreamSettings {
     double maximumDistance = 0.0;    // metres; 0 = kDefaultDistance
     double heightAboveGround = 0.0;  // metres, the camera's
     bool wait = true;                // produce every wanted tile before returning
+    // The date plants are shown at: instances of a plants source with `planted` are
+    // scaled by its growth curve for their age then (absent before planting). None: full
+    // size. Changing it rebuilds the cached batches.
+    std::optional<PlantDate> date;
     static constexpr double kDefaultDistance = 6000.0;
 };
 
@@ -59,6 +66,14 @@ public:
 
     const VegetationStreamStatistics& statistics() const { return statistics_; }
 
+    // Scales `placement` by the growth of `seasons` on `date` (issue 21 item 3): the crown
+    // fraction on every axis, the height over the crown fraction once more on the up axis
+    // (InstancePlacement::heightScale), for a model `modelHeight` metres tall. False when
+    // the plant is not planted yet or under a thousandth of its size (not drawn). Public
+    // for tests.
+    static bool grow(const PlantSeasons& seasons, const PlantDate& date, double modelHeight,
+                     InstancePlacement& placement);
+
     // The tiles (level, lonReduction 0) within `radius` metres of (latitude, longitude)
     // radians, refined near the point. Public for tests.
     static std::vector<TileKey> tilesAround(double latitude, double longitude, double radius,
@@ -71,6 +86,7 @@ private:
     };
     std::map<std::pair<const PlantsSource*, TileKey>, Entry> batches_;
     std::uint64_t frame_ = 0;
+    std::string dateOfBatches_;  // PlantDate::text() the cached batches were grown for
     VegetationStreamStatistics statistics_;
 };
 

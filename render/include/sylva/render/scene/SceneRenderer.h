@@ -17,6 +17,7 @@
 
 #include "sylva/core/base/Result.h"
 #include "sylva/core/scene/Camera.h"
+#include "sylva/core/seasons/PlantDate.h"
 #include "sylva/core/sources/graph/SourceGraph.h"
 #include "sylva/core/vegetation/VegetationStream.h"
 #include "sylva/render/gl/Framebuffer.h"
@@ -53,6 +54,10 @@ struct RenderSettings {
     // render with a sub-pixel shifted projection, averaged in linear light (SampleAccumulator).
     int samples = 1;
     VegetationSettings vegetation;
+    // The date plants are shown at (issue 21 item 3): their season (leaf-on, leaf-off,
+    // autumn; Phenology) and their growth since planting (GrowthCurve). None: full grown,
+    // full leaf. Batch rendering sets it from render `date`, else the view's time.
+    std::optional<PlantDate> plantDate;
     MeshSettings meshes;  // buildings and models of the scenario's `meshes` layers
     // Sun shadows (cascaded shadow maps, seed 001 §7.1): the terrain always casts; more
     // casters (not owned; e.g. the mesh/building renderer of issue 17, test objects) are

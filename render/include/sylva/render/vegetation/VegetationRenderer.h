@@ -22,6 +22,7 @@
 #include "sylva/core/plantlod/BillboardCloudBuilder.h"
 #include "sylva/core/plantlod/PlantAsset.h"
 #include "sylva/core/scene/Camera.h"
+#include "sylva/core/seasons/Phenology.h"
 #include "sylva/core/vegetation/LodSelector.h"
 #include "sylva/render/gl/GlHandle.h"
 #include "sylva/render/gl/ShaderLibrary.h"
@@ -72,6 +73,14 @@ public:
     // The asset of a species index (for the stream's name → index map).
     const std::shared_ptr<const PlantAsset>& asset(std::uint32_t species) const;
 
+    // The season of each species (index as addSpecies returned; missing entries: full
+    // leaf, green), applied by the following draws and shadow passes in the level of
+    // detail itself: leaf ellipsoids keep a share leafFraction of their noise coverage
+    // and turn towards the autumn colour; leaf triangles of the close-up and reference
+    // mesh are dropped per triangle and recoloured. Lines (branches) are unchanged;
+    // billboard clouds too (their texels mix leaves and branches).
+    void setLeafStates(std::vector<LeafState> states);
+
     // Selects and draws `batches` into the bound G-buffer (depth test GREATER, reversed-Z,
     // depth writes on). `pixelsHigh`: the image height, for the pixel angle.
     void draw(const std::vector<const InstanceBatch*>& batches, const Camera& camera,
@@ -96,6 +105,8 @@ private:
     bool mayExceedPointSize(const DrawRun& run, double pixelAngle, double cornerTangent,
                             double near) const;
     void drawShadowRuns(const ShadowView& view, const VegetationSettings& settings);
+    // uLeafFraction and uAutumn of `species` (full leaf when `leaves` is false).
+    void setLeafUniforms(ShaderProgram& program, std::uint32_t species, bool leaves);
     void drawMeshes(const std::vector<std::unique_ptr<VegetationMesh>>& meshes, const DrawRun& run,
                     glm::vec2 interval);
 
@@ -120,6 +131,7 @@ private:
     LodSelector shadowSelector_;
     LodSelection shadowSelection_;
     VegetationStatistics statistics_;
+    std::vector<LeafState> leafStates_;  // per species: the season of the render date
 };
 
 }  // namespace sylva::render

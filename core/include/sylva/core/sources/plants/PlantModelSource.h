@@ -32,6 +32,7 @@
 #include <string>
 
 #include "sylva/core/plantlod/PlantAsset.h"
+#include "sylva/core/seasons/Phenology.h"
 #include "sylva/core/sources/Source.h"
 #include "sylva/core/sources/SourceBuildContext.h"
 
@@ -44,6 +45,9 @@ struct PlantModelParameters {
     std::filesystem::path file;  // model (.gltf/.glb/.obj) or LoD-only (.plod)
     std::filesystem::path lod;   // optional prebuilt .plod for the model
     bool billboards = false;     // also build billboard clouds
+    // `phenology`: the species' leaf habit; none: Phenology::habitOfPlantPreset(preset).
+    // Not part of the asset (or its hash): it only changes how the asset is drawn.
+    std::optional<LeafHabit> leafHabit;
 };
 
 class PlantModelSource final : public Source {
@@ -68,6 +72,8 @@ public:
     Result<std::shared_ptr<const PlantAsset>> asset() const;
 
     const PlantModelParameters& parameters() const { return parameters_; }
+    // The species' leaf habit (`phenology`, else the preset's default).
+    LeafHabit leafHabit() const;
     // Where asset() keeps the built LoD for this source's content hash.
     std::filesystem::path cacheFile() const;
     // $SYLVA_CACHE_DIR, else $XDG_CACHE_HOME/sylva, else $HOME/.cache/sylva (else the

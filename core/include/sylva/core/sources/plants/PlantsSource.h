@@ -49,6 +49,7 @@
 #include <string>
 #include <vector>
 
+#include "sylva/core/seasons/PlantSeasons.h"
 #include "sylva/core/sources/Source.h"
 #include "sylva/core/sources/SourceBuildContext.h"
 #include "sylva/core/sources/plants/InstanceTile.h"
@@ -106,6 +107,16 @@ public:
     // fails for a species without a model, so no entry is nullptr.
     const std::vector<const PlantModelSource*>& models() const { return models_; }
 
+    // Seasons and growth (issue 21 item 3): `planted`, `growth` and the `phenology`
+    // overrides of the block. They change how instances are drawn, not which exist, so
+    // they stay out of the content hash (like `models`).
+    const PlantSeasons& seasons() const { return seasons_; }
+    // The phenology table of each species, indexed like speciesNames(): the block's
+    // override over the habit of the species' model (evergreen without `models`).
+    const std::vector<Phenology>& phenology() const { return phenology_; }
+    // Sets the seasons (create() reads them from the block) and the per-species tables.
+    void setSeasons(PlantSeasons seasons);
+
     // Keeps no instance inside the polygons of `footprints` (buildings, paved areas of a
     // proposal): every instance, scattered or from points, whose position lies inside one
     // is dropped. Call once, before the source produces anything; adds `footprints` to
@@ -161,7 +172,9 @@ private:
     std::vector<std::string> speciesNames_;
     std::vector<const PlantModelSource*> models_;        // per species
     std::vector<const PlantModelSource*> modelSources_;  // `models` as listed
-    std::vector<double> speciesCumulative_;              // over the `species` entries, ends at 1
+    PlantSeasons seasons_;
+    std::vector<Phenology> phenology_;       // per species
+    std::vector<double> speciesCumulative_;  // over the `species` entries, ends at 1
     double cellSize_ = 10.0;
     double rowHeight_ = 0.0;  // radians of latitude
     int rows_ = 0;

@@ -1,0 +1,27 @@
+#include "sylva/core/vegetation/LeafStates.h"
+
+namespace sylva {
+
+std::vector<LeafState> leafStates(const std::vector<VegetationStreamLayer>& layers,
+                                  std::size_t speciesCount, const std::optional<PlantDate>& date,
+                                  double latitude) {
+    std::vector<LeafState> states(speciesCount);
+    if (!date) {
+        return states;
+    }
+    std::vector<bool> done(speciesCount, false);
+    for (const VegetationStreamLayer& layer : layers) {
+        const std::vector<Phenology>& tables = layer.source->phenology();
+        for (std::size_t i = 0; i < layer.species.size() && i < tables.size(); ++i) {
+            const int species = layer.species[i];
+            if (species < 0 || std::size_t(species) >= speciesCount || done[species]) {
+                continue;
+            }
+            states[species] = tables[i].at(*date, latitude);
+            done[species] = true;
+        }
+    }
+    return states;
+}
+
+}  // namespace sylva
