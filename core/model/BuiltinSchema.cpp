@@ -743,6 +743,7 @@ SchemaRegistry makeBuiltin() {
     addLanguageSchema(registry);
     addObjectsSchema(registry);
     addAnalysisSchema(registry);
+    addPhotoSchema(registry);
     return registry;
 }
 

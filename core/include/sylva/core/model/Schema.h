@@ -104,5 +104,7 @@ void addLanguageSchema(SchemaRegistry& registry);
 void addAnalysisSchema(SchemaRegistry& registry);
 // The `buildings` and `objects` source kinds (ObjectsSchema.cpp).
 void addObjectsSchema(SchemaRegistry& registry);
+// The `photo` block of photomontages (PhotoSchema.cpp).
+void addPhotoSchema(SchemaRegistry& registry);
 
 }  // namespace sylva
