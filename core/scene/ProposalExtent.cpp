@@ -20,6 +20,7 @@ std::optional<ProposalExtent> ProposalExtent::measure(const PixelMask& mask,
     const glm::dvec3 north = glm::cross(Ellipsoid::surfaceNormal(at.latitude, at.longitude), east);
     const double heading = camera.heading();
     double nearest = std::numeric_limits<double>::infinity();
+    double farthest = 0.0;
     double left = std::numeric_limits<double>::infinity();
     double right = -std::numeric_limits<double>::infinity();
     for (int y = 0; y < height; ++y) {
@@ -30,7 +31,9 @@ std::optional<ProposalExtent> ProposalExtent::measure(const PixelMask& mask,
             }
             const glm::dvec2 pixel(x + 0.5, y + 0.5);
             const glm::dvec3 view = projection.viewDirection(pixel);
-            nearest = std::min(nearest, near / double(depth[i]) / -view.z);
+            const double range = near / double(depth[i]) / -view.z;
+            nearest = std::min(nearest, range);
+            farthest = std::max(farthest, range);
             const glm::dvec3 ray = projection.ecefDirection(pixel);
             const double bearing = std::atan2(glm::dot(ray, east), glm::dot(ray, north));
             // Relative to the heading, so a view across north does not wrap.
@@ -48,6 +51,7 @@ std::optional<ProposalExtent> ProposalExtent::measure(const PixelMask& mask,
     };
     ProposalExtent extent;
     extent.nearestDistance = nearest;
+    extent.farthestDistance = farthest;
     extent.leftBearing = compass(heading + left);
     extent.rightBearing = compass(heading + right);
     extent.horizontalExtent = right - left;

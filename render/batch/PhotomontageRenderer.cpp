@@ -79,7 +79,7 @@ Status renderLocationMap(SceneRenderer& scene, const TerrainLayers& layers, Tile
     const double ground =
         std::isfinite(viewpoint.groundHeight) ? viewpoint.groundHeight : viewpoint.geodetic.height;
     result.mapRadius =
-        result.extent ? std::max(500.0, 1.5 * result.extent->nearestDistance) : 2000.0;
+        result.extent ? std::max(500.0, 1.25 * result.extent->farthestDistance) : 2000.0;
     const Camera overhead = LocationMap::overhead(viewpoint, ground, result.mapRadius);
     settings.width = settings.height = PhotomontageRenderer::kMapPixels;
     settings.ev100.reset();  // metered for the map's own light

@@ -89,6 +89,8 @@ TEST(ProposalExtent, NearestRangeAndBearingsOfAPixelBand) {
     // Nearest: the column nearest the axis (x = 159 or 160: 0.5 px off), range z / cos.
     const glm::dvec3 ray = glm::normalize(glm::dvec3(0.5 / f, -0.5 / f, -1.0));
     EXPECT_NEAR(extent->nearestDistance, axial / -ray.z, 1e-3);
+    const glm::dvec3 edge = glm::normalize(glm::dvec3(-59.5 / f, -0.5 / f, -1.0));
+    EXPECT_NEAR(extent->farthestDistance, axial / -edge.z, 1e-3);
     EXPECT_FALSE(ProposalExtent::measure(PixelMask(w * h, 0), depth, near, camera, w, h));
 }
 

@@ -19,6 +19,7 @@ namespace sylva {
 
 struct ProposalExtent {
     double nearestDistance = 0.0;   // metres from the camera to the nearest proposal pixel
+    double farthestDistance = 0.0;  // ... and to the farthest (the location map's reach)
     double leftBearing = 0.0;       // radians clockwise from north, of the leftmost pixel
     double rightBearing = 0.0;      // ... and of the rightmost
     double horizontalExtent = 0.0;  // radians between them

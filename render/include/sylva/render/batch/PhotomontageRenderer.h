@@ -11,7 +11,8 @@
 //   model     the rendered baseline with the same lines (Type 2 wireline over the model);
 // and the proposal's nearest distance and horizontal extent (ProposalExtent), and with a
 // sheet the location plan: the proposed scenario from straight above the viewpoint with the
-// field-of-view wedge (LocationMap), out to 1.5 × the proposal's distance (2 km without).
+// field-of-view wedge (LocationMap), out to 1.25 × the farthest proposal pixel's range
+// (2 km without a visible proposal).
 // Planar cameras only (a photograph). One sample per pixel: the masks come from the depth
 // of the render they are cut from. Needs the batch renderer's GL context (it makes it).
 //
