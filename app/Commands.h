@@ -17,6 +17,7 @@ int runWatch(const std::vector<std::string>& arguments);
 int runView(const std::vector<std::string>& arguments);
 int runCheck(const std::vector<std::string>& arguments);
 int runAnalyse(const std::vector<std::string>& arguments);
+int runMontage(const std::vector<std::string>& arguments);
 int runFmt(const std::vector<std::string>& arguments);
 int runDump(const std::vector<std::string>& arguments);
 int runDoc(const std::vector<std::string>& arguments);

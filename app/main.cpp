@@ -36,6 +36,8 @@ void printUsage(std::FILE* stream) {
         "                 report every problem in a project without rendering\n"
         "  analyse PROJECT [--only NAME] [--out DIR] [--json] [-D name=value]\n"
         "                 compute the project's ztv blocks and write their GeoTIFFs\n"
+        "  montage PROJECT [--only NAME] [--out DIR] [--json] [-D name=value]\n"
+        "                 photomontages and wirelines of the project's photo blocks\n"
         "  fmt [--check] FILES...\n"
         "                 rewrite project files in canonical layout (--check: only report)\n"
         "  dump --json PROJECT [-D name=value] [--set block.attr=value]\n"
@@ -100,6 +102,9 @@ int main(int argc, char** argv) {
     }
     if (command == "analyse") {
         return sylva::app::runAnalyse(arguments);
+    }
+    if (command == "montage") {
+        return sylva::app::runMontage(arguments);
     }
     if (command == "fmt") {
         return sylva::app::runFmt(arguments);

@@ -190,7 +190,7 @@ void computeContentHashes(ProjectModel& model, const std::vector<std::string>* c
     }
     for (std::vector<Block>* blocks :
          {&model.scenarios, &model.cameras, &model.views, &model.compares, &model.blends,
-          &model.paths, &model.params, &model.ztvs, &model.shadowStudies}) {
+          &model.paths, &model.params, &model.ztvs, &model.shadowStudies, &model.photos}) {
         for (Block& block : *blocks) {
             block.contentHash = fnv1a(block.name + "|" + ownText(block));
         }

@@ -111,6 +111,8 @@ std::string modelsToJson(const std::vector<ProjectModel>& models, int indent) {
             out["ztvs"] = toJson(model.ztvs);
         if (!model.shadowStudies.empty())
             out["shadow_studies"] = toJson(model.shadowStudies);
+        if (!model.photos.empty())
+            out["photos"] = toJson(model.photos);
         scenarios.push_back(std::move(out));
     }
     Json root;

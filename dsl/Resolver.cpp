@@ -176,6 +176,8 @@ void Resolver::addToModel(ProjectModel& model, Block block) {
         model.ztvs.push_back(std::move(block));
     } else if (keyword == "shadow_study") {
         model.shadowStudies.push_back(std::move(block));
+    } else if (keyword == "photo") {
+        model.photos.push_back(std::move(block));
     } else if (keyword == "project") {
         model.project = std::move(block);
         acceptProjectCrs(model.project);

@@ -744,6 +744,7 @@ SchemaRegistry makeBuiltin() {
     addObjectsSchema(registry);
     addAnalysisSchema(registry);
     addSeasonsSchema(registry);
+    addPhotoSchema(registry);
     return registry;
 }
 

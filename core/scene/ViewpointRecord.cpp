@@ -126,6 +126,17 @@ ViewpointRecord ViewpointRecord::describe(const Camera& camera, const ViewpointI
     list.number("pitch_deg", "Pitch", "%.2f°", camera.pitch() / kDegree);
     describeLens(camera, image, list);
     describeTime(camera, inputs, list);
+    if (inputs.proposalDistance) {
+        list.number("proposal_distance_m", "Nearest part of the proposal", "%.0f m",
+                    *inputs.proposalDistance);
+    }
+    if (inputs.proposalExtent) {
+        list.number("proposal_extent_deg", "Horizontal extent of the proposal", "%.2f°",
+                    *inputs.proposalExtent / kDegree);
+    }
+    if (inputs.matchRms) {
+        list.number("match_rms_px", "Camera match rms residual", "%.2f px", *inputs.matchRms);
+    }
     std::string sources;
     for (const std::string& source : inputs.dataSources) {
         sources += (sources.empty() ? "" : "; ") + source;

@@ -20,9 +20,12 @@ int rowsPerColumn(const ViewpointRecord& record, const SheetLayout& layout) {
                std::size_t(layout.columns));
 }
 
-// Height (metres) of the metadata block: its rows plus a title line.
+// Height (metres) of the metadata block: its rows plus a title line, or the location map
+// with a line above it when that is taller.
 double blockHeight(const ViewpointRecord& record, const SheetLayout& layout) {
-    return (rowsPerColumn(record, layout) + 1) * layout.fontSize * kLineSpacing;
+    const double text = (rowsPerColumn(record, layout) + 1) * layout.fontSize * kLineSpacing;
+    return layout.locationMap ? std::max(text, layout.mapSize + layout.fontSize * kLineSpacing)
+                              : text;
 }
 
 cairo_status_t appendBytes(void* closure, const unsigned char* data, unsigned int length) {
@@ -52,9 +55,9 @@ cairo_surface_t* imageSurface(const RgbaImage& image) {
 }
 
 // Draws the sheet in metres (the caller's transform maps metres to device units).
-void drawSheet(cairo_t* cairo, cairo_surface_t* picture, const RgbaImage& image,
-               const PrintFormat& print, const ViewpointRecord& record, const SheetLayout& layout,
-               const glm::dvec2& page) {
+void drawSheet(cairo_t* cairo, cairo_surface_t* picture, cairo_surface_t* map,
+               const RgbaImage& image, const PrintFormat& print, const ViewpointRecord& record,
+               const SheetLayout& layout, const glm::dvec2& page) {
     cairo_set_source_rgb(cairo, 1, 1, 1);
     cairo_paint(cairo);
     const double left = (page.x - print.width) / 2.0;
@@ -82,7 +85,8 @@ void drawSheet(cairo_t* cairo, cairo_surface_t* picture, const RgbaImage& image,
                               (scenario ? scenario->text : std::string());
     cairo_show_text(cairo, title.c_str());
     const int rows = rowsPerColumn(record, layout);
-    const double columnWidth = print.width / layout.columns;
+    const double mapWidth = layout.locationMap ? layout.mapSize + layout.margin : 0.0;
+    const double columnWidth = (print.width - mapWidth) / layout.columns;
     for (std::size_t i = 0; i < record.fields().size(); ++i) {
         const ViewpointField& field = record.fields()[i];
         const double x = left + columnWidth * double(int(i) / rows);
@@ -95,6 +99,21 @@ void drawSheet(cairo_t* cairo, cairo_surface_t* picture, const RgbaImage& image,
                                CAIRO_FONT_WEIGHT_NORMAL);
         cairo_show_text(cairo, field.text.c_str());
     }
+    if (map != nullptr) {
+        const double mapLeft = left + print.width - layout.mapSize;
+        const double mapTop = top + print.height + line * 0.5;
+        cairo_save(cairo);
+        cairo_translate(cairo, mapLeft, mapTop);
+        cairo_scale(cairo, layout.mapSize / layout.locationMap->width,
+                    layout.mapSize / layout.locationMap->height);
+        cairo_set_source_surface(cairo, map, 0, 0);
+        cairo_pattern_set_filter(cairo_get_source(cairo), CAIRO_FILTER_GOOD);
+        cairo_paint(cairo);
+        cairo_restore(cairo);
+        cairo_set_source_rgb(cairo, 0, 0, 0);
+        cairo_rectangle(cairo, mapLeft, mapTop, layout.mapSize, layout.mapSize);
+        cairo_stroke(cairo);
+    }
 }
 
 Status writePdf(const RgbaImage& image, const PrintFormat& print, const ViewpointRecord& record,
@@ -106,13 +125,17 @@ Status writePdf(const RgbaImage& image, const PrintFormat& print, const Viewpoin
     cairo_t* cairo = cairo_create(surface);
     cairo_scale(cairo, kPointsPerMetre, kPointsPerMetre);
     cairo_surface_t* picture = imageSurface(image);
-    drawSheet(cairo, picture, image, print, record, layout, page);
+    cairo_surface_t* map = layout.locationMap ? imageSurface(*layout.locationMap) : nullptr;
+    drawSheet(cairo, picture, map, image, print, record, layout, page);
     cairo_show_page(cairo);
     cairo_destroy(cairo);
     cairo_surface_finish(surface);
     const cairo_status_t status = cairo_surface_status(surface);
     cairo_surface_destroy(surface);
     cairo_surface_destroy(picture);
+    if (map != nullptr) {
+        cairo_surface_destroy(map);
+    }
     if (status != CAIRO_STATUS_SUCCESS) {
         return Error{path.string() + ": cannot draw the sheet: " + cairo_status_to_string(status)};
     }
@@ -136,12 +159,16 @@ Status writePng(const RgbaImage& image, const PrintFormat& print, const Viewpoin
     cairo_t* cairo = cairo_create(surface);
     cairo_scale(cairo, pixelsPerMetre, pixelsPerMetre);
     cairo_surface_t* picture = imageSurface(image);
-    drawSheet(cairo, picture, image, print, record, layout, page);
+    cairo_surface_t* map = layout.locationMap ? imageSurface(*layout.locationMap) : nullptr;
+    drawSheet(cairo, picture, map, image, print, record, layout, page);
     cairo_destroy(cairo);
     std::string bytes;
     const cairo_status_t status = cairo_surface_write_to_png_stream(surface, appendBytes, &bytes);
     cairo_surface_destroy(surface);
     cairo_surface_destroy(picture);
+    if (map != nullptr) {
+        cairo_surface_destroy(map);
+    }
     if (status != CAIRO_STATUS_SUCCESS) {
         return Error{path.string() + ": cannot draw the sheet: " + cairo_status_to_string(status)};
     }

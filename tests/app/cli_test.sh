@@ -416,4 +416,17 @@ expect_rc 2
 expect_stderr "plant build needs -o OUT.plod"
 end
 
+begin "montage with a missing photograph -> located error, exit 1, nothing written"
+run montage "$PROJECTS/montage_missing_photo.sylva" --out "$SCRATCH/montage"
+expect_rc 1
+expect_stderr "montage_missing_photo.sylva:8:12: photo 'vp_photo': $PROJECTS/no_such_photo.jpg: the photograph does not exist"
+expect_no_png "$SCRATCH/montage"
+end
+
+begin "montage without a project -> usage, exit 2"
+run montage
+expect_rc 2
+expect_stderr "montage needs exactly one project file"
+end
+
 finish

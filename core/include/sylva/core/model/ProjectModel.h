@@ -56,6 +56,7 @@ struct ProjectModel {
     std::vector<Block> paths;          // keyword "path": camera animations
     std::vector<Block> ztvs;           // keyword "ztv": zones of theoretical visibility (analyse)
     std::vector<Block> shadowStudies;  // keyword "shadow_study": sun and shadow (analyse)
+    std::vector<Block> photos;         // keyword "photo": photomontages (montage)
 
     const Block* findSource(std::string_view name) const { return findIn(sources, name); }
     const Block* findCamera(std::string_view name) const { return findIn(cameras, name); }

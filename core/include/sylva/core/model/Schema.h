@@ -106,5 +106,7 @@ void addAnalysisSchema(SchemaRegistry& registry);
 void addObjectsSchema(SchemaRegistry& registry);
 // `planted`, `growth`, `phenology` (plants, plant_model) and render `date` (SeasonsSchema.cpp).
 void addSeasonsSchema(SchemaRegistry& registry);
+// The `photo` block of photomontages (PhotoSchema.cpp).
+void addPhotoSchema(SchemaRegistry& registry);
 
 }  // namespace sylva

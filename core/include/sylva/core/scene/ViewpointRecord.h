@@ -36,6 +36,11 @@ struct ViewpointInputs {
     std::vector<std::string> dataSources;  // "name (kind, file)" per layer source
     std::string version;                   // Sylva version
     std::string projectHash;               // hex
+    // Photomontages (PhotomontageRenderer): metres to the nearest visible part of the
+    // proposal, its horizontal extent (radians), the camera match's rms residual (pixels).
+    std::optional<double> proposalDistance;
+    std::optional<double> proposalExtent;
+    std::optional<double> matchRms;
 };
 
 class ViewpointRecord {

@@ -1,8 +1,9 @@
 // ViewpointSheet: one printable sheet per viewpoint and scenario (LI TGN 06/19, NatureScot
 // v2.2 viewpoint packs): the image at its print size (Camera::print, e.g. 820 × 260 mm)
 // centred at the top of the page, and the viewpoint's metadata block (ViewpointRecord)
-// below it in columns. Drawn with cairo as a PDF (page in points, the image embedded at
-// its full pixel resolution) and as a PNG at the print's dpi; both written atomically.
+// below it in columns, with the location plan beside it when the layout has one. Drawn with cairo
+// as a PDF (page in points, the image embedded at its full pixel resolution) and as a PNG at the
+// print's dpi; both written atomically.
 #pragma once
 
 #include <filesystem>
@@ -21,6 +22,10 @@ struct SheetLayout {
     double margin = 0.010;     // metres round the image (at least)
     double fontSize = 0.0022;  // metres (about 6 pt)
     int columns = 4;           // of the metadata block
+    // The location plan (LocationMap), drawn square, mapSize wide, right of the metadata
+    // block under the image (not owned; null: no map).
+    const RgbaImage* locationMap = nullptr;
+    double mapSize = 0.07;  // metres
 };
 
 class ViewpointSheet {
