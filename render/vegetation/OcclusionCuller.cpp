@@ -6,7 +6,9 @@
 
 namespace sylva::render {
 
-std::vector<OcclusionRing> OcclusionCuller::rings(const VegetationSettings& settings) {
+std::vector<OcclusionRing> OcclusionCuller::rings(const VegetationSettings& settings,
+                                                  const std::vector<const InstanceBatch*>& batches,
+                                                  const glm::dvec3& eye) {
     if (!settings.occlusionCulling || settings.occlusionRings < 1 ||
         !(settings.occluderDistance > 0.0)) {
         return {OcclusionRing{}};
@@ -19,7 +21,16 @@ std::vector<OcclusionRing> OcclusionCuller::rings(const VegetationSettings& sett
         ring.minimumDistance = start;
         const bool last = k + 1 == settings.occlusionRings || (maximum > 0.0 && end >= maximum);
         ring.maximumDistance = last ? 0.0 : end;
-        out.push_back(ring);
+        const bool reached = std::any_of(batches.begin(), batches.end(), [&](const auto* batch) {
+            const double distance =
+                glm::length(batch->origin + glm::dvec3(batch->boundsCenter) - eye);
+            const double radius = batch->boundsRadius;
+            return distance + radius > ring.minimumDistance &&
+                   (last || distance - radius <= ring.maximumDistance);
+        });
+        if (reached || last) {
+            out.push_back(ring);
+        }
         if (last) {
             break;
         }

@@ -30,9 +30,13 @@ struct OcclusionRing {
 class OcclusionCuller {
 public:
     // The ring limits of `settings` (one unbounded ring when culling is off): ends at
-    // occluderDistance × occlusionRingRatio^k, the last ring open. `maximumDistance`
-    // (metres, 0 = none) ends the list early.
-    static std::vector<OcclusionRing> rings(const VegetationSettings& settings);
+    // occluderDistance × occlusionRingRatio^k, the last ring open; `maximumDistance`
+    // (metres, 0 = none) ends the list early. Rings no batch's bounding sphere reaches
+    // (from `eye`, ECEF metres) are left out — each ring costs a read-back — but the last
+    // ring always stays.
+    static std::vector<OcclusionRing> rings(const VegetationSettings& settings,
+                                            const std::vector<const InstanceBatch*>& batches,
+                                            const glm::dvec3& eye);
 
     // Reads the depth of the framebuffer bound for reading (pixelsWide × pixelsHigh,
     // reversed-Z floats) and rebuilds the pyramid for `projection` and `near`. The

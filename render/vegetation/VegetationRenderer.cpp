@@ -281,9 +281,10 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches,
         return;
     }
     // Rings nearest first; with culling, each is culled against the depth drawn so far.
-    const std::vector<OcclusionRing> rings = OcclusionCuller::rings(settings);
+    const std::vector<OcclusionRing> rings =
+        OcclusionCuller::rings(settings, batches, camera.position);
     for (OcclusionRing ring : rings) {
-        if (rings.size() > 1) {
+        if (settings.occlusionCulling) {
             const auto start = std::chrono::steady_clock::now();
             ring.pyramid = &occlusion_->update(pixelsWide, pixelsHigh, projection, near);
             statistics_.occlusionSeconds +=

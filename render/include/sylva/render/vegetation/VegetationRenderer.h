@@ -67,7 +67,8 @@ struct VegetationStatistics {
     double selectSeconds = 0;  // CPU: LodSelector::select
     double uploadSeconds = 0;  // CPU → GPU instance buffer
     // Occlusion culling: the instances culled (LodSelection::occludedInstances) and the
-    // CPU seconds of the depth read-backs and pyramids.
+    // seconds of the depth read-backs and pyramids (a read-back first waits for what was
+    // drawn before it to finish).
     std::size_t occludedInstances = 0;
     double occlusionSeconds = 0;
 };
