@@ -1,5 +1,6 @@
 // `sylva bench vegetation [--json] [--size WxH] [--trees N] [--leaves N] [--frames N]
-// [--reference-scale N] [--no-scaling] [--methods lod,bbc,mesh] [--write-frames DIR] [--gl B]`: the
+// [--reference-scale N] [--no-scaling] [--no-occlusion] [--methods lod,bbc,mesh]
+// [--write-frames DIR] [--gl B]`: the
 // vegetation renderer benchmark of issue 7 (bench/VegetationBenchmark.h). Prints the metrics as
 // JSON with --json, else one line per metric.
 #include <cstdio>
@@ -20,6 +21,7 @@ int runVegetationBench(const std::vector<std::string>& arguments) {
                                                                    {"frames"},
                                                                    {"reference-scale"},
                                                                    {"no-scaling", false},
+                                                                   {"no-occlusion", false},
                                                                    {"methods"},
                                                                    {"write-frames"},
                                                                    {"gl"}});
@@ -55,6 +57,7 @@ int runVegetationBench(const std::vector<std::string>& arguments) {
         return 2;
     }
     options.scaling = !command.has("no-scaling");
+    options.occlusion = !command.has("no-occlusion");
     if (std::optional<std::string> methods = command.get("methods")) {
         options.lod = options.billboards = options.mesh = false;
         std::size_t start = 0;

@@ -157,6 +157,7 @@ public:
     }
 
     SceneRenderer& renderer() { return *renderer_; }
+    void setOcclusion(bool occlusion) { occlusion_ = occlusion; }
     std::uint32_t species() const { return species_; }
     const std::vector<SpeciesLod>& lods() { return renderer_->vegetation().speciesLods(); }
 
@@ -171,6 +172,7 @@ public:
         settings_.vegetation.method = method;
         // The methods are compared as themselves: no mesh handover for the LoD.
         settings_.vegetation.closeUpMesh = false;
+        settings_.vegetation.occlusionCulling = occlusion_;
         const auto start = std::chrono::steady_clock::now();
         Result<Image> image = renderer_->render(layers_, evaluator_, c, settings_);
         seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -198,7 +200,8 @@ private:
           color_("meadow", glm::vec4(0.10f, 0.14f, 0.05f, 1.0f)),
           normals_("flat.normals", &elevation_, 1.0),
           layers_{&elevation_, &color_, &normals_, {}, {}},
-          evaluator_(TileFormat{256, 2}) {
+          evaluator_(TileFormat{256, 2}),
+          occlusion_(options.occlusion) {
         settings_.sunDirection =
             glm::normalize(Ellipsoid::surfaceNormal(kForestLatitude - 0.5, kForestLongitude - 0.6));
         settings_.atmosphere = true;
@@ -214,6 +217,7 @@ private:
     RenderSettings settings_;
     std::unique_ptr<SceneRenderer> renderer_;
     std::uint32_t species_ = 0;
+    bool occlusion_ = true;
 };
 
 // Per method: the plants' milliseconds per frame, the error against the reference and
@@ -242,10 +246,12 @@ void logMethodFrame(const VegetationStatistics& drawn, VegetationMethod method,
     std::snprintf(detail, sizeof detail,
                   "  %s: %.0f ms (frame without plants %.0f ms); %zu instances, %zu "
                   "ellipsoids, %zu lines, "
-                  "%zu meshes, %zu billboard clouds, select %.1f ms, %zu quad passes",
+                  "%zu meshes, %zu billboard clouds, select %.1f ms, %zu quad passes, "
+                  "%zu occluded (%.1f ms)",
                   methodName(method), plantMilliseconds, bare * 1000.0, drawn.drawnInstances,
                   drawn.ellipsoids, drawn.lines, drawn.meshInstances, drawn.billboardInstances,
-                  drawn.selectSeconds * 1000.0, drawn.quadPassRuns);
+                  drawn.selectSeconds * 1000.0, drawn.quadPassRuns, drawn.occludedInstances,
+                  drawn.occlusionSeconds * 1000.0);
     logProgress(detail);
 }
 
@@ -421,6 +427,23 @@ Status measureScaling(ForestScene& scene, const VegetationBenchmarkOptions& opti
     return {};
 }
 
+// The fraction of the instances that pass the frustum, size and distance tests that
+// occlusion culling drops, for the camera inside the forest (the path's fourth key) with
+// the LoD method.
+Result<double> culledFractionInsideForest(ForestScene& scene,
+                                          const std::vector<InstanceBatch>& forest) {
+    scene.setOcclusion(true);
+    double seconds = 0.0;
+    Result<Image> image = scene.render(forestCamera(kForestPath, 3.0), pointers(forest),
+                                       VegetationMethod::Lod, seconds);
+    if (!image) {
+        return image.error();
+    }
+    const VegetationStatistics& drawn = scene.renderer().vegetation().statistics();
+    const double candidates = double(drawn.visibleInstances + drawn.occludedInstances);
+    return candidates > 0.0 ? double(drawn.occludedInstances) / candidates : 0.0;
+}
+
 }  // namespace
 
 std::string VegetationBenchmarkResult::json() const {
@@ -450,6 +473,14 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(
     }
     VegetationBenchmarkResult result;
     addMethodMetrics(samples, result.metrics);
+    if (options.lod) {
+        Result<double> culled = culledFractionInsideForest(*scene.value(), forest);
+        if (!culled) {
+            return culled.error();
+        }
+        result.metrics["culled_fraction_inside_forest"] = culled.value();
+        scene.value()->setOcclusion(options.occlusion);
+    }
     result.metrics["trees"] = options.trees;
     result.metrics["frames"] = frames;
     result.metrics["lod_ellipsoids"] = double(asset.value()->lod.ellipsoids.size());

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "DrawnExtent.h"
 #include "sylva/core/base/Check.h"
 
 namespace sylva {
@@ -61,6 +62,7 @@ SpeciesLod LodSelector::describe(const PlantAsset& asset, double transitionBand)
     species.height = lod.boundsMaximum.z;
     species.ellipsoidCount = static_cast<std::uint32_t>(lod.ellipsoids.size());
     species.lineCount = static_cast<std::uint32_t>(lod.lines.size());
+    species.drawnRadius = drawnExtentRadius(asset, species.sphereCenter);
 
     // The finest level's own error (its mean ellipsoid diameter over ~5 pixels, the same
     // rule PlantLodBuilder uses for the coarser levels): closer than this a leaf covers
@@ -205,6 +207,9 @@ struct LodSelector::Frame {
     float offsets[4];
     float fixedDistance = 0.0f;  // > 0: orthographic (LodSelectionSettings::fixedDistance)
     std::size_t total = 0;       // instances of the batches that passed the culling
+    float minimumDistance = 0.0f;
+    // The largest drawnRadius / sphereRadius of the species (≥ 1): widens batch spheres.
+    float largestDrawnRatio = 1.0f;
     int chunks = 1;
 
     Frame(const std::vector<SpeciesLod>& s, const Camera& c, const LodSelectionSettings& set)
@@ -221,7 +226,17 @@ struct LodSelector::Frame {
                                                   : std::numeric_limits<float>::infinity()),
           planes{set.sidePlanes[0], set.sidePlanes[1], set.sidePlanes[2], set.sidePlanes[3]},
           offsets{set.sideOffsets[0], set.sideOffsets[1], set.sideOffsets[2], set.sideOffsets[3]},
-          fixedDistance(float(std::max(set.fixedDistance, 0.0))) {}
+          fixedDistance(float(std::max(set.fixedDistance, 0.0))),
+          minimumDistance(float(set.minimumDistance)) {
+        for (const SpeciesLod& lod : s) {
+            largestDrawnRatio = std::max(largestDrawnRatio, drawnRatio(lod));
+        }
+    }
+
+    // How much larger than the instance sphere the drawn sphere of a species is (≥ 1).
+    static float drawnRatio(const SpeciesLod& lod) {
+        return lod.sphereRadius > 0.0f ? std::max(1.0f, lod.drawnRadius / lod.sphereRadius) : 1.0f;
+    }
 };
 
 namespace {
@@ -287,6 +302,7 @@ void LodSelector::select(const std::vector<const InstanceBatch*>& allBatches,
     out.visibleInstances = 0;
     out.drawnEllipsoids = 0;
     out.drawnLines = 0;
+    out.occludedInstances = 0;
 
     Frame frame(species, camera, settings);
     out.consideredInstances = cullBatches(allBatches, frame);
@@ -299,7 +315,12 @@ void LodSelector::select(const std::vector<const InstanceBatch*>& allBatches,
     for (std::vector<Decision>& decisions : decided_) {
         decisions.clear();
     }
+    occluded_.assign(std::size_t(frame.chunks), 0);
     pool_->run(frame.chunks, [&](int chunk) { decideChunk(chunk, frame); });
+    out.occludedInstances = occludedBatchInstances_;
+    for (std::size_t hidden : occluded_) {
+        out.occludedInstances += hidden;
+    }
 
     sortRuns(frame, out);
     writeInstances(frame, out);
@@ -312,6 +333,7 @@ std::size_t LodSelector::cullBatches(const std::vector<const InstanceBatch*>& al
     const LodSelectionSettings& settings = frame.settings;
     batches_.clear();
     batchStart_.clear();
+    occludedBatchInstances_ = 0;
     std::size_t considered = 0, total = 0;
     for (const InstanceBatch* batch : allBatches) {
         considered += batch->instances.size();
@@ -328,7 +350,15 @@ std::size_t LodSelector::cullBatches(const std::vector<const InstanceBatch*>& al
                            float(settings.minimumPixels * nearest * frame.errorPerMetre);
         const bool withinDistance =
             settings.maximumDistance <= 0.0 || nearest <= settings.maximumDistance;
-        if (inside && large && withinDistance && !batch->instances.empty()) {
+        const bool beyondMinimum = glm::length(center) + r > frame.minimumDistance;
+        if (inside && large && withinDistance && beyondMinimum && !batch->instances.empty() &&
+            settings.occlusion != nullptr &&
+            settings.occlusion->hidden(
+                center, r + batch->largestInstanceRadius * (frame.largestDrawnRatio - 1.0f))) {
+            occludedBatchInstances_ += batch->instances.size();
+            continue;
+        }
+        if (inside && large && withinDistance && beyondMinimum && !batch->instances.empty()) {
             batches_.push_back(batch);
             batchStart_.push_back(total);
             total += batch->instances.size();
@@ -348,6 +378,7 @@ void LodSelector::decideChunk(int chunk, const Frame& frame) {
     const float minimumPixels = float(frame.settings.minimumPixels);
     const glm::vec3* planes = frame.planes;
     const float* offsets = frame.offsets;
+    const DepthPyramid* occlusion = frame.settings.occlusion;
     std::size_t b =
         std::upper_bound(batchStart_.begin(), batchStart_.end(), first) - batchStart_.begin() - 1;
     for (std::size_t i = first; i < last;) {
@@ -370,10 +401,16 @@ void LodSelector::decideChunk(int chunk, const Frame& frame) {
             const float distance =
                 frame.fixedDistance > 0.0f ? frame.fixedDistance : glm::length(center);
             const float error = float(distance * frame.errorPerMetre);
-            if (distance > frame.maximumDistance || 2.0f * r < minimumPixels * error) {
+            if (distance > frame.maximumDistance || 2.0f * r < minimumPixels * error ||
+                distance <= frame.minimumDistance) {
                 continue;
             }
             const std::uint32_t speciesIndex = batch.instances[k].species;
+            if (occlusion != nullptr &&
+                occlusion->hidden(center, r * Frame::drawnRatio(frame.species[speciesIndex]))) {
+                ++occluded_[std::size_t(chunk)];
+                continue;
+            }
             Decision d;
             d.batch = std::uint32_t(b);
             d.index = std::uint32_t(k);

@@ -2,12 +2,14 @@
 
 #include <glad/gl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <limits>
 #include <numbers>
 
+#include "OcclusionCuller.h"
 #include "sylva/core/base/Check.h"
 
 namespace sylva::render {
@@ -195,6 +197,7 @@ Result<std::unique_ptr<VegetationRenderer>> VegetationRenderer::create(
     GLfloat pointSizes[2] = {1.0f, 1.0f};
     glGetFloatv(GL_POINT_SIZE_RANGE, pointSizes);
     renderer->maximumPointSize_ = std::max(1.0f, pointSizes[1]);
+    renderer->occlusion_ = std::make_unique<OcclusionCuller>();
     renderer->instanceBuffer_ = createGlBuffer();
     renderer->primitiveArray_ = createGlVertexArray();
     setInstanceAttributes(renderer->primitiveArray_.get(), 0, 0);
@@ -297,6 +300,24 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches,
     if (species_.empty()) {
         return;
     }
+    // Rings nearest first; with culling, each is culled against the depth drawn so far.
+    const std::vector<OcclusionRing> rings =
+        OcclusionCuller::rings(settings, batches, camera.position);
+    for (OcclusionRing ring : rings) {
+        if (settings.occlusionCulling) {
+            const auto start = std::chrono::steady_clock::now();
+            ring.pyramid = &occlusion_->update(pixelsWide, pixelsHigh, projection, near);
+            statistics_.occlusionSeconds +=
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        }
+        drawRing(batches, camera, projection, near, pixelsWide, pixelsHigh, settings, ring);
+    }
+}
+
+void VegetationRenderer::drawRing(const std::vector<const InstanceBatch*>& batches,
+                                  const Camera& camera, const glm::dmat4& projection, double near,
+                                  int pixelsWide, int pixelsHigh,
+                                  const VegetationSettings& settings, const OcclusionRing& ring) {
     LodSelectionSettings selection;
     selection.pixelAngle = 2.0 * std::tan(camera.verticalFov / 2) / std::max(pixelsHigh, 1);
     selection.quality = settings.quality;
@@ -306,6 +327,13 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches,
     selection.closeUpMesh = settings.closeUpMesh;
     selection.method = settings.method;
     selection.near = near;
+    selection.minimumDistance = ring.minimumDistance;
+    if (ring.maximumDistance > 0.0) {
+        selection.maximumDistance = selection.maximumDistance > 0.0
+                                        ? std::min(selection.maximumDistance, ring.maximumDistance)
+                                        : ring.maximumDistance;
+    }
+    selection.occlusion = ring.pyramid;
     // The symmetric frustum that holds the (possibly lens-shifted) image window.
     const double halfWidth =
         (1.0 + std::abs(projection[2][0])) / projection[0][0];  // tangent, right or left
@@ -315,12 +343,13 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches,
     const auto selectStart = std::chrono::steady_clock::now();
     selector_.select(batches, lods_, camera, selection, selection_);
     const auto uploadStart = std::chrono::steady_clock::now();
-    statistics_.selectSeconds = std::chrono::duration<double>(uploadStart - selectStart).count();
+    statistics_.selectSeconds += std::chrono::duration<double>(uploadStart - selectStart).count();
     statistics_.consideredInstances = selection_.consideredInstances;
-    statistics_.visibleInstances = selection_.visibleInstances;
-    statistics_.drawnInstances = selection_.instances.size();
-    statistics_.ellipsoids = selection_.drawnEllipsoids;
-    statistics_.lines = selection_.drawnLines;
+    statistics_.visibleInstances += selection_.visibleInstances;
+    statistics_.drawnInstances += selection_.instances.size();
+    statistics_.ellipsoids += selection_.drawnEllipsoids;
+    statistics_.lines += selection_.drawnLines;
+    statistics_.occludedInstances += selection_.occludedInstances;
     if (selection_.instances.empty()) {
         return;
     }
@@ -333,7 +362,7 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches,
         glInvalidateBufferData(instanceBuffer_.get());
     }
     glNamedBufferSubData(instanceBuffer_.get(), 0, GLsizeiptr(bytes), selection_.instances.data());
-    statistics_.uploadSeconds =
+    statistics_.uploadSeconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - uploadStart).count();
 
     glEnable(GL_DEPTH_TEST);

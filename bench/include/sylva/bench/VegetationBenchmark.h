@@ -31,6 +31,9 @@ struct VegetationBenchmarkOptions {
     // The methods to run (profiling); without the mesh there is no reference image and
     // no RMSE, without the LoD no scaling runs.
     bool lod = true, billboards = true, mesh = true;
+    // Occlusion culling of the plants on the path (VegetationSettings::occlusionCulling);
+    // `culled_fraction_inside_forest` is measured with it on either way.
+    bool occlusion = true;
 };
 
 struct VegetationBenchmarkResult {

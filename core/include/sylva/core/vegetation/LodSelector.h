@@ -37,6 +37,7 @@
 #include "sylva/core/plantlod/BillboardCloudBuilder.h"
 #include "sylva/core/plantlod/PlantAsset.h"
 #include "sylva/core/scene/Camera.h"
+#include "sylva/core/vegetation/DepthPyramid.h"
 
 namespace sylva {
 
@@ -95,6 +96,9 @@ struct SpeciesLod {
     // Billboard-cloud levels: level i is drawn in [billboardError[i], billboardError[i+1]).
     // At most LodSelector::kMaxBillboardLevels.
     std::vector<float> billboardError;
+    // Radius (metres, model frame) around sphereCenter that holds everything drawn for the
+    // species (DrawnExtent; may exceed sphereRadius): the sphere occlusion culling tests.
+    float drawnRadius = 0.0f;
 };
 
 enum class VegetationMethod : std::uint8_t {
@@ -122,6 +126,15 @@ struct LodSelectionSettings {
     // `near` very negative to keep instances on either side of the origin.
     float sideOffsets[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     double fixedDistance = 0.0;
+    // Occlusion culling (issue 21): instances and batches whose drawn sphere (the
+    // instance sphere scaled to SpeciesLod::drawnRadius) is hidden behind the pyramid's
+    // depths are skipped and counted in LodSelection::occludedInstances. Null: off. Not
+    // owned; it must match this selection's camera and projection.
+    const DepthPyramid* occlusion = nullptr;
+    // Instances whose sphere centre is at most this far (metres) are skipped: with
+    // maximumDistance it splits one frame into a near selection (the occluders, drawn
+    // first) and a far one culled against the depth the near one left.
+    double minimumDistance = 0.0;
 };
 
 // What the GPU receives per drawn instance: the model → view transform (three axis
@@ -153,6 +166,9 @@ struct LodSelection {
     std::size_t visibleInstances = 0;
     std::size_t drawnEllipsoids = 0;  // upper bound: prefixes times instances
     std::size_t drawnLines = 0;
+    // Instances that passed every other test but were hidden (LodSelectionSettings::
+    // occlusion), and the instances of batches hidden as a whole.
+    std::size_t occludedInstances = 0;
 };
 
 // The selector of one renderer (or benchmark): an object so that it owns the per-chunk
@@ -228,6 +244,8 @@ private:
     std::vector<std::vector<Decision>> decided_;     // pass 1: per chunk
     std::vector<std::uint32_t> start_;               // first instance per run key, then the total
     std::vector<std::vector<std::uint32_t>> slots_;  // pass 2: per chunk, two per decision
+    std::vector<std::size_t> occluded_;              // pass 1: per chunk, hidden instances
+    std::size_t occludedBatchInstances_ = 0;         // instances of batches hidden as a whole
 };
 
 }  // namespace sylva

@@ -32,6 +32,8 @@
 namespace sylva::render {
 
 struct VegetationMesh;  // one mesh of one material on the GPU (VegetationRenderer.cpp)
+struct OcclusionRing;   // one distance ring of occlusion culling (OcclusionCuller.h)
+class OcclusionCuller;
 
 struct VegetationSettings {
     VegetationMethod method = VegetationMethod::Lod;
@@ -41,6 +43,16 @@ struct VegetationSettings {
     double transitionBand = 0.35;  // screen-door fade width, in ln(error)
     bool closeUpMesh = true;       // hand over from the finest LoD to the source mesh
     float normalNoise = 0.6f;      // normal perturbation of ellipsoids (§3.4.1)
+    // Occlusion culling (issue 21, OcclusionCuller): the plants are drawn in rings of
+    // distance, nearest first — up to occluderDistance, then each ring occlusionRingRatio
+    // times as far, the last one unbounded — and before each ring the depth buffer (terrain,
+    // meshes, the nearer rings) is read back into a hierarchical-Z pyramid against which
+    // the ring's instances and instance tiles are culled. The image is the same as without
+    // (only the order of equal-depth fragments may differ); off: one selection.
+    bool occlusionCulling = true;
+    double occluderDistance = 50.0;  // metres: the first ring
+    double occlusionRingRatio = 4.0;
+    int occlusionRings = 3;
 };
 
 struct VegetationStatistics {
@@ -55,6 +67,11 @@ struct VegetationStatistics {
     std::size_t billboardInstances = 0;
     double selectSeconds = 0;  // CPU: LodSelector::select
     double uploadSeconds = 0;  // CPU → GPU instance buffer
+    // Occlusion culling: the instances culled (LodSelection::occludedInstances) and the
+    // seconds of the depth read-backs and pyramids (a read-back first waits for what was
+    // drawn before it to finish).
+    std::size_t occludedInstances = 0;
+    double occlusionSeconds = 0;
 };
 
 class VegetationRenderer : public ShadowCaster {
@@ -95,6 +112,7 @@ public:
     void drawShadow(const ShadowView& view) override;
 
     const VegetationStatistics& statistics() const { return statistics_; }
+    // The selection of the last draw() (with occlusion culling: of its farthest ring).
     const LodSelection& lastSelection() const { return selection_; }
 
 private:
@@ -107,6 +125,12 @@ private:
     void drawShadowRuns(const ShadowView& view, const VegetationSettings& settings);
     // uLeafFraction and uAutumn of `species` (full leaf when `leaves` is false).
     void setLeafUniforms(ShaderProgram& program, std::uint32_t species, bool leaves);
+    // One selection and its draws (draw() runs one per occlusion ring): instances with
+    // centres in (minimumDistance, maximumDistance] culled against `occlusion` (may be
+    // null); statistics are added up.
+    void drawRing(const std::vector<const InstanceBatch*>& batches, const Camera& camera,
+                  const glm::dmat4& projection, double near, int pixelsWide, int pixelsHigh,
+                  const VegetationSettings& settings, const OcclusionRing& ring);
     void drawMeshes(const std::vector<std::unique_ptr<VegetationMesh>>& meshes, const DrawRun& run,
                     glm::vec2 interval);
 
@@ -125,6 +149,8 @@ private:
     float maximumPointSize_ = 1.0f;  // pixels: the driver's largest point sprite
     LodSelector selector_;           // its scratch is kept from frame to frame
     LodSelection selection_;
+    // Occlusion culling: the depth read-back and its pyramid.
+    std::unique_ptr<OcclusionCuller> occlusion_;
     // The shadow pass: the last draw()'s input, its own selector scratch and selection.
     std::vector<const InstanceBatch*> shadowBatches_;
     VegetationSettings shadowSettings_;
