@@ -31,6 +31,8 @@ struct VegetationBenchmarkOptions {
     // The methods to run (profiling); without the mesh there is no reference image and
     // no RMSE, without the LoD no scaling runs.
     bool lod = true, billboards = true, mesh = true;
+    bool points = true;  // point clouds with approximate visible sets (seed 000 ch. 3)
+    bool dmbbc = true;   // displacement-mapped billboard clouds (seed 000 ch. 5)
 };
 
 struct VegetationBenchmarkResult {

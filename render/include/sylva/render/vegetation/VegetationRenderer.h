@@ -30,7 +30,9 @@
 
 namespace sylva::render {
 
-struct VegetationMesh;  // one mesh of one material on the GPU (VegetationRenderer.cpp)
+struct VegetationMesh;             // one mesh of one material on the GPU (VegetationRenderer.cpp)
+class PointCloudRenderer;          // the `points` method (render/vegetation/PointCloudRenderer.h)
+class DisplacedBillboardRenderer;  // `dmbbc` (render/vegetation/DisplacedBillboardRenderer.h)
 
 struct VegetationSettings {
     VegetationMethod method = VegetationMethod::Lod;
@@ -52,6 +54,7 @@ struct VegetationStatistics {
     std::size_t quadPassRuns = 0;  // runs whose large ellipsoids needed the quad pass
     std::size_t meshInstances = 0;
     std::size_t billboardInstances = 0;
+    std::size_t points = 0;    // point samples issued (the `points` method)
     double selectSeconds = 0;  // CPU: LodSelector::select
     double uploadSeconds = 0;  // CPU → GPU instance buffer
 };
@@ -96,6 +99,12 @@ private:
     bool mayExceedPointSize(const DrawRun& run, double pixelAngle, double cornerTangent,
                             double near) const;
     void drawShadowRuns(const ShadowView& view, const VegetationSettings& settings);
+    // The `dmbbc` method: the selection's Billboard runs as ray-marched boxes.
+    void drawDisplacedBillboards(const glm::mat4& projection, double near, glm::vec2 viewport,
+                                 float band);
+    // The `points` method: the selection's Primitives runs as point clouds.
+    void drawPoints(const glm::dmat4& projection, double near, int pixelsWide, int pixelsHigh,
+                    double pixelAngle);
     void drawMeshes(const std::vector<std::unique_ptr<VegetationMesh>>& meshes, const DrawRun& run,
                     glm::vec2 interval);
 
@@ -120,6 +129,9 @@ private:
     LodSelector shadowSelector_;
     LodSelection shadowSelection_;
     VegetationStatistics statistics_;
+    std::unique_ptr<PointCloudRenderer> pointClouds_;
+    std::unique_ptr<DisplacedBillboardRenderer> displacedBillboards_;
+    std::vector<std::shared_ptr<const PlantAsset>> assets_;  // per species (the methods' input)
 };
 
 }  // namespace sylva::render
