@@ -1,8 +1,7 @@
 // `sylva bench vegetation [--json] [--size WxH] [--trees N] [--leaves N] [--frames N]
-// [--reference-scale N] [--no-scaling] [--no-occlusion] [--methods lod,bbc,mesh]
-// [--write-frames DIR] [--gl B]`: the
-// vegetation renderer benchmark of issue 7 (bench/VegetationBenchmark.h). Prints the metrics as
-// JSON with --json, else one line per metric.
+// [--reference-scale N] [--no-scaling] [--no-occlusion] [--methods lod,bbc,mesh,points,dmbbc]
+// [--write-frames DIR] [--gl B]`: the vegetation renderer benchmark of issue 7
+// (bench/VegetationBenchmark.h). Prints the metrics as JSON with --json, else one line per metric.
 #include <cstdio>
 
 #include "CommandLine.h"
@@ -60,6 +59,7 @@ int runVegetationBench(const std::vector<std::string>& arguments) {
     options.occlusion = !command.has("no-occlusion");
     if (std::optional<std::string> methods = command.get("methods")) {
         options.lod = options.billboards = options.mesh = false;
+        options.points = options.dmbbc = false;
         std::size_t start = 0;
         while (start <= methods->size()) {
             const std::size_t end = std::min(methods->find(',', start), methods->size());
@@ -70,9 +70,15 @@ int runVegetationBench(const std::vector<std::string>& arguments) {
                 options.billboards = true;
             } else if (method == "mesh") {
                 options.mesh = true;
+            } else if (method == "points") {
+                options.points = true;
+            } else if (method == "dmbbc") {
+                options.dmbbc = true;
             } else {
-                reportError("--methods expects a comma-separated list of lod, bbc and mesh (got '" +
-                            method + "')");
+                reportError(
+                    "--methods expects a comma-separated list of lod, bbc, mesh, points and dmbbc "
+                    "(got '" +
+                    method + "')");
                 return 2;
             }
             start = end + 1;

@@ -121,6 +121,10 @@ const char* methodName(VegetationMethod method) {
             return "bbc";
         case VegetationMethod::Mesh:
             return "mesh";
+        case VegetationMethod::Points:
+            return "points";
+        case VegetationMethod::DisplacedBillboard:
+            return "dmbbc";
     }
     return "?";
 }
@@ -132,8 +136,9 @@ void logProgress(const char* text) {
 constexpr double kSegmentSeconds = 5.0;  // path time per segment, for the 1/25 s step
 constexpr double kNextFrame = 1.0 / (25.0 * kSegmentSeconds);
 
-constexpr VegetationMethod kMethods[3] = {VegetationMethod::Lod, VegetationMethod::Billboard,
-                                          VegetationMethod::Mesh};
+constexpr VegetationMethod kMethods[] = {VegetationMethod::Lod, VegetationMethod::Billboard,
+                                         VegetationMethod::Mesh, VegetationMethod::Points,
+                                         VegetationMethod::DisplacedBillboard};
 
 // The flat meadow, the renderer with the oak as its one species, and timed frames.
 class ForestScene {
@@ -236,6 +241,10 @@ bool methodRuns(VegetationMethod method, const VegetationBenchmarkOptions& optio
             return haveBillboards && options.billboards;
         case VegetationMethod::Mesh:
             return options.mesh;
+        case VegetationMethod::Points:
+            return options.points;
+        case VegetationMethod::DisplacedBillboard:
+            return haveBillboards && options.dmbbc;
     }
     return false;
 }
@@ -246,12 +255,12 @@ void logMethodFrame(const VegetationStatistics& drawn, VegetationMethod method,
     std::snprintf(detail, sizeof detail,
                   "  %s: %.0f ms (frame without plants %.0f ms); %zu instances, %zu "
                   "ellipsoids, %zu lines, "
-                  "%zu meshes, %zu billboard clouds, select %.1f ms, %zu quad passes, "
+                  "%zu meshes, %zu billboard clouds, %zu points, select %.1f ms, %zu quad passes, "
                   "%zu occluded (%.1f ms)",
                   methodName(method), plantMilliseconds, bare * 1000.0, drawn.drawnInstances,
                   drawn.ellipsoids, drawn.lines, drawn.meshInstances, drawn.billboardInstances,
-                  drawn.selectSeconds * 1000.0, drawn.quadPassRuns, drawn.occludedInstances,
-                  drawn.occlusionSeconds * 1000.0);
+                  drawn.points, drawn.selectSeconds * 1000.0, drawn.quadPassRuns,
+                  drawn.occludedInstances, drawn.occlusionSeconds * 1000.0);
     logProgress(detail);
 }
 

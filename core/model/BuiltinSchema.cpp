@@ -708,10 +708,13 @@ KindSchema renderBlock() {
                     "Disk tile cache budget in MiB; least recently used tiles are removed "
                     "beyond it (--disk-cache-mb overrides it)."),
              wordChoice(
-                 "vegetation", {"lod", "billboards", "mesh"}, "lod",
+                 "vegetation", {"lod", "billboards", "mesh", "points", "dmbbc"}, "lod",
                  "How plants are drawn: ray-cast ellipsoid/line levels of detail with the source "
                  "mesh for close-ups, billboard clouds (from .plod files built with them), or the "
-                 "source mesh everywhere (slow; a reference)."),
+                 "source mesh everywhere (slow; a reference). points: the mesh sampled as discs "
+                 "with approximate visible sets per view direction (seed 000 ch. 3); dmbbc: the "
+                 "billboard clouds as ray-marched displacement-mapped boxes (seed 000 ch. 5). Both "
+                 "are comparison methods (docs/benchmarks.md)."),
              number("vegetation_quality", Dimension::None, 1.0, 0.1, 10.0,
                     "Divides the error a plant's level of detail may show (metres per pixel): 2 "
                     "draws "

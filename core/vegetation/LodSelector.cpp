@@ -252,6 +252,9 @@ void assignKeys(float error, const SpeciesLod& lod, const LodSelectionSettings& 
         case VegetationMethod::Mesh:
             key = std::uint16_t(base + kMeshSlot);
             return;
+        case VegetationMethod::Points:
+            key = std::uint16_t(base + fastBucketOf(error, float(LodSelector::kSmallestError)));
+            return;
         case VegetationMethod::Lod: {
             const bool mesh = settings.closeUpMesh && error < lod.meshError * fadeUp;
             const bool primitives =
@@ -266,6 +269,7 @@ void assignKeys(float error, const SpeciesLod& lod, const LodSelectionSettings& 
             }
             return;
         }
+        case VegetationMethod::DisplacedBillboard:
         case VegetationMethod::Billboard: {
             // The level whose interval holds the error, and its neighbour in the fade band.
             const std::vector<float>& levels = lod.billboardError;

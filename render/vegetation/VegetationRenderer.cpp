@@ -10,6 +10,8 @@
 #include <numbers>
 
 #include "OcclusionCuller.h"
+#include "DisplacedBillboardRenderer.h"
+#include "PointCloudRenderer.h"
 #include "sylva/core/base/Check.h"
 
 namespace sylva::render {
@@ -198,6 +200,17 @@ Result<std::unique_ptr<VegetationRenderer>> VegetationRenderer::create(
     glGetFloatv(GL_POINT_SIZE_RANGE, pointSizes);
     renderer->maximumPointSize_ = std::max(1.0f, pointSizes[1]);
     renderer->occlusion_ = std::make_unique<OcclusionCuller>();
+    Result<std::unique_ptr<PointCloudRenderer>> points = PointCloudRenderer::create(library);
+    if (!points) {
+        return points.error();
+    }
+    renderer->pointClouds_ = std::move(points.value());
+    Result<std::unique_ptr<DisplacedBillboardRenderer>> displaced =
+        DisplacedBillboardRenderer::create(library);
+    if (!displaced) {
+        return displaced.error();
+    }
+    renderer->displacedBillboards_ = std::move(displaced.value());
     renderer->instanceBuffer_ = createGlBuffer();
     renderer->primitiveArray_ = createGlVertexArray();
     setInstanceAttributes(renderer->primitiveArray_.get(), 0, 0);
@@ -287,6 +300,7 @@ Result<std::uint32_t> VegetationRenderer::addSpecies(std::shared_ptr<const Plant
             description.billboardError.empty() ? 0.0f : float(level.epsilon / kBillboardPixels));
     }
     lods_.push_back(description);
+    assets_.push_back(asset);
     species_.push_back(std::move(species));
     return std::uint32_t(species_.size() - 1);
 }
@@ -351,6 +365,10 @@ void VegetationRenderer::drawRing(const std::vector<const InstanceBatch*>& batch
     statistics_.lines += selection_.drawnLines;
     statistics_.occludedInstances += selection_.occludedInstances;
     if (selection_.instances.empty()) {
+        return;
+    }
+    if (settings.method == VegetationMethod::Points) {
+        drawPoints(projection, near, pixelsWide, pixelsHigh, selection.pixelAngle);
         return;
     }
     const std::size_t bytes = selection_.instances.size() * sizeof(DrawInstance);
@@ -443,7 +461,8 @@ void VegetationRenderer::drawRing(const std::vector<const InstanceBatch*>& batch
             drawMeshes(species.mesh, run, glm::vec2(0.0f, maximum));
             statistics_.meshInstances += run.instanceCount;
         } else if (run.kind == DrawRun::Kind::Billboard &&
-                   run.bucket < species.billboardLevels.size()) {
+                   run.bucket < species.billboardLevels.size() &&
+                   settings.method != VegetationMethod::DisplacedBillboard) {
             const std::size_t level = run.bucket;
             const float minimum = lod.billboardError[level];
             const float maximum =
@@ -453,6 +472,37 @@ void VegetationRenderer::drawRing(const std::vector<const InstanceBatch*>& batch
         }
     }
     glBindVertexArray(0);
+    if (settings.method == VegetationMethod::DisplacedBillboard) {
+        drawDisplacedBillboards(projectionFloat, near, viewport, band);
+    }
+}
+
+void VegetationRenderer::drawDisplacedBillboards(const glm::mat4& projection, double near,
+                                                 glm::vec2 viewport, float band) {
+    DisplacedBillboardFrame frame;
+    frame.projection = projection;
+    frame.near = float(near);
+    frame.viewport = viewport;
+    frame.band = band;
+    statistics_.billboardInstances +=
+        displacedBillboards_->draw(selection_, lods_, assets_, instanceBuffer_.get(), frame);
+}
+
+void VegetationRenderer::drawPoints(const glm::dmat4& projection, double near, int pixelsWide,
+                                    int pixelsHigh, double pixelAngle) {
+    statistics_.ellipsoids = statistics_.lines = 0;
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);  // reversed-Z
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    PointCloudFrame frame;
+    frame.projection = glm::mat4(projection);
+    frame.near = float(near);
+    frame.viewport = glm::vec2(float(pixelsWide), float(pixelsHigh));
+    frame.pixelAngle = float(pixelAngle);
+    frame.maximumPointSize = maximumPointSize_;
+    statistics_.points = pointClouds_->draw(selection_, lods_, assets_, frame);
 }
 
 void VegetationRenderer::setLeafStates(std::vector<LeafState> states) {

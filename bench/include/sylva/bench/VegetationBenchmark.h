@@ -34,6 +34,8 @@ struct VegetationBenchmarkOptions {
     // Occlusion culling of the plants on the path (VegetationSettings::occlusionCulling);
     // `culled_fraction_inside_forest` is measured with it on either way.
     bool occlusion = true;
+    bool points = true;  // point clouds with approximate visible sets (seed 000 ch. 3)
+    bool dmbbc = true;   // displacement-mapped billboard clouds (seed 000 ch. 5)
 };
 
 struct VegetationBenchmarkResult {

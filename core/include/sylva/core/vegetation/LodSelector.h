@@ -105,6 +105,12 @@ enum class VegetationMethod : std::uint8_t {
     Lod,        // ellipsoids and lines (the source mesh for close-ups when enabled)
     Billboard,  // billboard clouds (comparison, seed 003)
     Mesh,       // the source mesh everywhere (reference)
+    // Point-sampled plants with approximate visible sets (seed 000 ch. 3), selected like
+    // Lod without the mesh handover (the bucket sets the prefix).
+    Points,
+    // Displacement-mapped billboard clouds (seed 000 ch. 5): the billboard levels,
+    // selected like Billboard, ray-marched as boxes.
+    DisplacedBillboard,
 };
 
 struct LodSelectionSettings {

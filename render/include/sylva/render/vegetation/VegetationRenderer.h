@@ -34,6 +34,9 @@ namespace sylva::render {
 struct VegetationMesh;  // one mesh of one material on the GPU (VegetationRenderer.cpp)
 struct OcclusionRing;   // one distance ring of occlusion culling (OcclusionCuller.h)
 class OcclusionCuller;
+struct VegetationMesh;             // one mesh of one material on the GPU (VegetationRenderer.cpp)
+class PointCloudRenderer;          // the `points` method (render/vegetation/PointCloudRenderer.h)
+class DisplacedBillboardRenderer;  // `dmbbc` (render/vegetation/DisplacedBillboardRenderer.h)
 
 struct VegetationSettings {
     VegetationMethod method = VegetationMethod::Lod;
@@ -65,6 +68,7 @@ struct VegetationStatistics {
     std::size_t quadPassRuns = 0;  // runs whose large ellipsoids needed the quad pass
     std::size_t meshInstances = 0;
     std::size_t billboardInstances = 0;
+    std::size_t points = 0;    // point samples issued (the `points` method)
     double selectSeconds = 0;  // CPU: LodSelector::select
     double uploadSeconds = 0;  // CPU → GPU instance buffer
     // Occlusion culling: the instances culled (LodSelection::occludedInstances) and the
@@ -131,6 +135,12 @@ private:
     void drawRing(const std::vector<const InstanceBatch*>& batches, const Camera& camera,
                   const glm::dmat4& projection, double near, int pixelsWide, int pixelsHigh,
                   const VegetationSettings& settings, const OcclusionRing& ring);
+    // The `dmbbc` method: the selection's Billboard runs as ray-marched boxes.
+    void drawDisplacedBillboards(const glm::mat4& projection, double near, glm::vec2 viewport,
+                                 float band);
+    // The `points` method: the selection's Primitives runs as point clouds.
+    void drawPoints(const glm::dmat4& projection, double near, int pixelsWide, int pixelsHigh,
+                    double pixelAngle);
     void drawMeshes(const std::vector<std::unique_ptr<VegetationMesh>>& meshes, const DrawRun& run,
                     glm::vec2 interval);
 
@@ -158,6 +168,9 @@ private:
     LodSelection shadowSelection_;
     VegetationStatistics statistics_;
     std::vector<LeafState> leafStates_;  // per species: the season of the render date
+    std::unique_ptr<PointCloudRenderer> pointClouds_;
+    std::unique_ptr<DisplacedBillboardRenderer> displacedBillboards_;
+    std::vector<std::shared_ptr<const PlantAsset>> assets_;  // per species (the methods' input)
 };
 
 }  // namespace sylva::render
