@@ -57,6 +57,7 @@ int runVegetationBench(const std::vector<std::string>& arguments) {
     options.scaling = !command.has("no-scaling");
     if (std::optional<std::string> methods = command.get("methods")) {
         options.lod = options.billboards = options.mesh = false;
+        options.impostors = false;
         std::size_t start = 0;
         while (start <= methods->size()) {
             const std::size_t end = std::min(methods->find(',', start), methods->size());
@@ -67,9 +68,13 @@ int runVegetationBench(const std::vector<std::string>& arguments) {
                 options.billboards = true;
             } else if (method == "mesh") {
                 options.mesh = true;
+            } else if (method == "impostors") {
+                options.impostors = true;
             } else {
-                reportError("--methods expects a comma-separated list of lod, bbc and mesh (got '" +
-                            method + "')");
+                reportError(
+                    "--methods expects a comma-separated list of lod, bbc, mesh and impostors (got "
+                    "'" +
+                    method + "')");
                 return 2;
             }
             start = end + 1;

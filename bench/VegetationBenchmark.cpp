@@ -121,6 +121,8 @@ const char* methodName(VegetationMethod method) {
             return "bbc";
         case VegetationMethod::Mesh:
             return "mesh";
+        case VegetationMethod::Impostors:
+            return "impostors";
     }
     return "?";
 }
@@ -132,8 +134,8 @@ void logProgress(const char* text) {
 constexpr double kSegmentSeconds = 5.0;  // path time per segment, for the 1/25 s step
 constexpr double kNextFrame = 1.0 / (25.0 * kSegmentSeconds);
 
-constexpr VegetationMethod kMethods[3] = {VegetationMethod::Lod, VegetationMethod::Billboard,
-                                          VegetationMethod::Mesh};
+constexpr VegetationMethod kMethods[] = {VegetationMethod::Lod, VegetationMethod::Billboard,
+                                         VegetationMethod::Mesh, VegetationMethod::Impostors};
 
 // The flat meadow, the renderer with the oak as its one species, and timed frames.
 class ForestScene {
@@ -232,6 +234,8 @@ bool methodRuns(VegetationMethod method, const VegetationBenchmarkOptions& optio
             return haveBillboards && options.billboards;
         case VegetationMethod::Mesh:
             return options.mesh;
+        case VegetationMethod::Impostors:
+            return options.impostors;
     }
     return false;
 }
@@ -246,6 +250,19 @@ void logMethodFrame(const VegetationStatistics& drawn, VegetationMethod method,
                   methodName(method), plantMilliseconds, bare * 1000.0, drawn.drawnInstances,
                   drawn.ellipsoids, drawn.lines, drawn.meshInstances, drawn.billboardInstances,
                   drawn.selectSeconds * 1000.0, drawn.quadPassRuns);
+    logProgress(detail);
+}
+
+void logImpostorFrame(const ImpostorStatistics& drawn) {
+    char detail[256];
+    std::snprintf(detail, sizeof detail,
+                  "  impostors: %zu single, %zu groups of %zu instances, %zu group renders (%zu "
+                  "for resolution), validity tests %zu: %zu in GVV, %zu valid by metric, %zu "
+                  "regenerated",
+                  drawn.impostorInstances, drawn.groups, drawn.groupInstances, drawn.groupsRendered,
+                  drawn.resolutionRenders, drawn.validity.tests,
+                  drawn.validity.insideGuaranteedVolume, drawn.validity.validByMetric,
+                  drawn.validity.regenerated);
     logProgress(detail);
 }
 
@@ -264,6 +281,9 @@ Status measureMethod(ForestScene& scene, const std::vector<const InstanceBatch*>
     samples.plantMilliseconds[method].push_back(std::max(0.0, seconds - bare) * 1000.0);
     logMethodFrame(scene.renderer().vegetation().statistics(), method,
                    samples.plantMilliseconds[method].back(), bare);
+    if (method == VegetationMethod::Impostors) {
+        logImpostorFrame(scene.renderer().vegetation().impostorStatistics());
+    }
     if (!options.framesFolder.empty()) {
         char name[64];
         std::snprintf(name, sizeof name, "/frame%02d_%s.png", frame, methodName(method));

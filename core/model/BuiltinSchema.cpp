@@ -708,10 +708,12 @@ KindSchema renderBlock() {
                     "Disk tile cache budget in MiB; least recently used tiles are removed "
                     "beyond it (--disk-cache-mb overrides it)."),
              wordChoice(
-                 "vegetation", {"lod", "billboards", "mesh"}, "lod",
+                 "vegetation", {"lod", "billboards", "mesh", "impostors"}, "lod",
                  "How plants are drawn: ray-cast ellipsoid/line levels of detail with the source "
                  "mesh for close-ups, billboard clouds (from .plod files built with them), or the "
-                 "source mesh everywhere (slow; a reference)."),
+                 "source mesh everywhere (slow; a reference)."
+                 " impostors: view-direction impostors at 64/128/256 texels and far tiles as "
+                 "group impostors re-used while their parallax stays within a pixel."),
              number("vegetation_quality", Dimension::None, 1.0, 0.1, 10.0,
                     "Divides the error a plant's level of detail may show (metres per pixel): 2 "
                     "draws "

@@ -90,6 +90,7 @@ Result<RenderSetup> RenderSetup::fromModel(const ProjectModel& model, int overri
                                        : "lod";
     settings.vegetation.method = vegetation == "mesh"         ? VegetationMethod::Mesh
                                  : vegetation == "billboards" ? VegetationMethod::Billboard
+                                 : vegetation == "impostors"  ? VegetationMethod::Impostors
                                                               : VegetationMethod::Lod;
     settings.vegetation.quality = renderBlock.optionalNumber("vegetation_quality").value_or(1.0);
     settings.vegetation.maximumDistance =

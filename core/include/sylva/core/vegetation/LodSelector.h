@@ -97,6 +97,8 @@ enum class VegetationMethod : std::uint8_t {
     Lod,        // ellipsoids and lines (the source mesh for close-ups when enabled)
     Billboard,  // billboard clouds (comparison, seed 003)
     Mesh,       // the source mesh everywhere (reference)
+    Impostors,  // view-direction and group impostors (seeds 004, 000 ch. 7): one transform
+                // per visible instance, in the species' mesh run, for ImpostorRenderer
 };
 
 struct LodSelectionSettings {

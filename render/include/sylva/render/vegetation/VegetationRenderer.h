@@ -27,6 +27,7 @@
 #include "sylva/render/gl/ShaderLibrary.h"
 #include "sylva/render/gl/ShaderProgram.h"
 #include "sylva/render/shadows/ShadowCaster.h"
+#include "sylva/render/vegetation/ImpostorRenderer.h"
 
 namespace sylva::render {
 
@@ -87,6 +88,10 @@ public:
 
     const VegetationStatistics& statistics() const { return statistics_; }
     const LodSelection& lastSelection() const { return selection_; }
+    // The impostors method (VegetationMethod::Impostors): its settings and the last
+    // frame's counts (single impostors, groups, group renders, validity tests).
+    void setImpostorSettings(const ImpostorSettings& settings) { impostorSettings_ = settings; }
+    const ImpostorStatistics& impostorStatistics() const { return impostors_->statistics(); }
 
 private:
     VegetationRenderer() = default;
@@ -96,6 +101,9 @@ private:
     bool mayExceedPointSize(const DrawRun& run, double pixelAngle, double cornerTangent,
                             double near) const;
     void drawShadowRuns(const ShadowView& view, const VegetationSettings& settings);
+    // The impostors method's draw(): groups split off, the rest selected and drawn.
+    void drawImpostors(const std::vector<const InstanceBatch*>& batches, const Camera& camera,
+                       const glm::dmat4& projection, LodSelectionSettings selection);
     void drawMeshes(const std::vector<std::unique_ptr<VegetationMesh>>& meshes, const DrawRun& run,
                     glm::vec2 interval);
 
@@ -120,6 +128,8 @@ private:
     LodSelector shadowSelector_;
     LodSelection shadowSelection_;
     VegetationStatistics statistics_;
+    std::unique_ptr<ImpostorRenderer> impostors_;
+    ImpostorSettings impostorSettings_;
 };
 
 }  // namespace sylva::render
