@@ -143,7 +143,6 @@ struct ImpostorRenderer::GpuImpostor {
     glm::vec4 toward;        // capture toward-eye axis × instance scale
     glm::vec4 tint;          // rgb
 };
-static_assert(sizeof(glm::vec4) * 5 == 80);
 
 struct ImpostorRenderer::SpeciesAtlas {
     glm::vec3 sphereCenter{0.0f};
@@ -284,6 +283,7 @@ void ImpostorRenderer::appendImpostor(std::vector<std::vector<GpuImpostor>>& byL
 
 void ImpostorRenderer::drawImpostors(const std::vector<std::vector<GpuImpostor>>& byLevel,
                                      const glm::mat4& projection, bool writeDistance) {
+    static_assert(sizeof(GpuImpostor) == 80);  // the shader's std430 Impostor
     std::vector<GpuImpostor> all;
     for (const std::vector<GpuImpostor>& list : byLevel) {
         all.insert(all.end(), list.begin(), list.end());
@@ -330,13 +330,11 @@ void ImpostorRenderer::drawImpostors(const std::vector<std::vector<GpuImpostor>>
 }
 
 std::vector<const InstanceBatch*> ImpostorRenderer::partition(
-    const std::vector<const InstanceBatch*>& batches, const std::vector<SpeciesLod>& lods,
-    const Camera& camera, const LodSelectionSettings& selection, const ImpostorSettings& settings) {
-    (void)lods;
+    const std::vector<const InstanceBatch*>& batches, const Camera& camera,
+    const LodSelectionSettings& selection, const ImpostorSettings& settings) {
     ++frame_;
     statistics_ = {};
     groupedBatches_.clear();
-    partitionPixelAngle_ = selection.pixelAngle;
     std::vector<const InstanceBatch*> near;
     const glm::dmat3 rotation = camera.viewRotation();
     for (const InstanceBatch* batch : batches) {

@@ -442,7 +442,7 @@ void VegetationRenderer::drawImpostors(const std::vector<const InstanceBatch*>& 
                                        LodSelectionSettings selection) {
     const auto selectStart = std::chrono::steady_clock::now();
     const std::vector<const InstanceBatch*> near =
-        impostors_->partition(batches, lods_, camera, selection, impostorSettings_);
+        impostors_->partition(batches, camera, selection, impostorSettings_);
     selector_.select(near, lods_, camera, selection, selection_);
     statistics_.selectSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - selectStart).count();

@@ -86,7 +86,6 @@ public:
     // frame) and the rest (returned) for the caller's selection. `selection` carries the
     // frustum and pixel angle of the view.
     std::vector<const InstanceBatch*> partition(const std::vector<const InstanceBatch*>& batches,
-                                                const std::vector<SpeciesLod>& lods,
                                                 const Camera& camera,
                                                 const LodSelectionSettings& selection,
                                                 const ImpostorSettings& settings);
@@ -127,7 +126,6 @@ private:
     std::map<const InstanceBatch*, std::unique_ptr<Group>> groups_;
     std::vector<const InstanceBatch*> groupedBatches_;
     std::uint64_t frame_ = 0;
-    double partitionPixelAngle_ = 0.0;
     ImpostorStatistics statistics_;
 };
 
