@@ -60,6 +60,7 @@ int runVegetationBench(const std::vector<std::string>& arguments) {
     if (std::optional<std::string> methods = command.get("methods")) {
         options.lod = options.billboards = options.mesh = false;
         options.points = options.dmbbc = false;
+        options.impostors = false;
         std::size_t start = 0;
         while (start <= methods->size()) {
             const std::size_t end = std::min(methods->find(',', start), methods->size());
@@ -74,10 +75,12 @@ int runVegetationBench(const std::vector<std::string>& arguments) {
                 options.points = true;
             } else if (method == "dmbbc") {
                 options.dmbbc = true;
+            } else if (method == "impostors") {
+                options.impostors = true;
             } else {
                 reportError(
-                    "--methods expects a comma-separated list of lod, bbc, mesh, points and dmbbc "
-                    "(got '" +
+                    "--methods expects a comma-separated list of lod, bbc, mesh, points, dmbbc and "
+                    "impostors (got '" +
                     method + "')");
                 return 2;
             }

@@ -125,6 +125,8 @@ const char* methodName(VegetationMethod method) {
             return "points";
         case VegetationMethod::DisplacedBillboard:
             return "dmbbc";
+        case VegetationMethod::Impostors:
+            return "impostors";
     }
     return "?";
 }
@@ -138,7 +140,8 @@ constexpr double kNextFrame = 1.0 / (25.0 * kSegmentSeconds);
 
 constexpr VegetationMethod kMethods[] = {VegetationMethod::Lod, VegetationMethod::Billboard,
                                          VegetationMethod::Mesh, VegetationMethod::Points,
-                                         VegetationMethod::DisplacedBillboard};
+                                         VegetationMethod::DisplacedBillboard,
+                                         VegetationMethod::Impostors};
 
 // The flat meadow, the renderer with the oak as its one species, and timed frames.
 class ForestScene {
@@ -245,6 +248,8 @@ bool methodRuns(VegetationMethod method, const VegetationBenchmarkOptions& optio
             return options.points;
         case VegetationMethod::DisplacedBillboard:
             return haveBillboards && options.dmbbc;
+        case VegetationMethod::Impostors:
+            return options.impostors;
     }
     return false;
 }
@@ -264,6 +269,19 @@ void logMethodFrame(const VegetationStatistics& drawn, VegetationMethod method,
     logProgress(detail);
 }
 
+void logImpostorFrame(const ImpostorStatistics& drawn) {
+    char detail[256];
+    std::snprintf(detail, sizeof detail,
+                  "  impostors: %zu single, %zu groups of %zu instances, %zu group renders (%zu "
+                  "for resolution), validity tests %zu: %zu in GVV, %zu valid by metric, %zu "
+                  "regenerated",
+                  drawn.impostorInstances, drawn.groups, drawn.groupInstances, drawn.groupsRendered,
+                  drawn.resolutionRenders, drawn.validity.tests,
+                  drawn.validity.insideGuaranteedVolume, drawn.validity.validByMetric,
+                  drawn.validity.regenerated);
+    logProgress(detail);
+}
+
 // Frame `frame` (path time `t`) with `method`: timed against `bare`, written to the
 // frames folder, and on sampled frames (non-empty `reference`) compared with the
 // reference and with the frame 1/25 s later.
@@ -279,6 +297,9 @@ Status measureMethod(ForestScene& scene, const std::vector<const InstanceBatch*>
     samples.plantMilliseconds[method].push_back(std::max(0.0, seconds - bare) * 1000.0);
     logMethodFrame(scene.renderer().vegetation().statistics(), method,
                    samples.plantMilliseconds[method].back(), bare);
+    if (method == VegetationMethod::Impostors) {
+        logImpostorFrame(scene.renderer().vegetation().impostorStatistics());
+    }
     if (!options.framesFolder.empty()) {
         char name[64];
         std::snprintf(name, sizeof name, "/frame%02d_%s.png", frame, methodName(method));

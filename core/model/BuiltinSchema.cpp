@@ -708,13 +708,15 @@ KindSchema renderBlock() {
                     "Disk tile cache budget in MiB; least recently used tiles are removed "
                     "beyond it (--disk-cache-mb overrides it)."),
              wordChoice(
-                 "vegetation", {"lod", "billboards", "mesh", "points", "dmbbc"}, "lod",
+                 "vegetation", {"lod", "billboards", "mesh", "points", "dmbbc", "impostors"}, "lod",
                  "How plants are drawn: ray-cast ellipsoid/line levels of detail with the source "
                  "mesh for close-ups, billboard clouds (from .plod files built with them), or the "
                  "source mesh everywhere (slow; a reference). points: the mesh sampled as discs "
                  "with approximate visible sets per view direction (seed 000 ch. 3); dmbbc: the "
-                 "billboard clouds as ray-marched displacement-mapped boxes (seed 000 ch. 5). Both "
-                 "are comparison methods (docs/benchmarks.md)."),
+                 "billboard clouds as ray-marched displacement-mapped boxes (seed 000 ch. 5); "
+                 "impostors: view-direction impostors at 64/128/256 texels and far tiles as group "
+                 "impostors re-used while their parallax stays within a pixel (seeds 004, 000 "
+                 "ch. 7). The last three are comparison methods (docs/benchmarks.md)."),
              number("vegetation_quality", Dimension::None, 1.0, 0.1, 10.0,
                     "Divides the error a plant's level of detail may show (metres per pixel): 2 "
                     "draws "

@@ -250,6 +250,7 @@ void assignKeys(float error, const SpeciesLod& lod, const LodSelectionSettings& 
     key2 = kNoKey;
     switch (settings.method) {
         case VegetationMethod::Mesh:
+        case VegetationMethod::Impostors:
             key = std::uint16_t(base + kMeshSlot);
             return;
         case VegetationMethod::Points:

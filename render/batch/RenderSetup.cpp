@@ -102,6 +102,7 @@ Result<RenderSetup> RenderSetup::fromModel(const ProjectModel& model, int overri
                                  : vegetation == "billboards" ? VegetationMethod::Billboard
                                  : vegetation == "points"     ? VegetationMethod::Points
                                  : vegetation == "dmbbc"      ? VegetationMethod::DisplacedBillboard
+                                 : vegetation == "impostors"  ? VegetationMethod::Impostors
                                                               : VegetationMethod::Lod;
     settings.vegetation.quality = renderBlock.optionalNumber("vegetation_quality").value_or(1.0);
     settings.vegetation.maximumDistance =

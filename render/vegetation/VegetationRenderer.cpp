@@ -213,6 +213,11 @@ Result<std::unique_ptr<VegetationRenderer>> VegetationRenderer::create(
     renderer->displacedBillboards_ = std::move(displaced.value());
     renderer->instanceBuffer_ = createGlBuffer();
     renderer->primitiveArray_ = createGlVertexArray();
+    Result<std::unique_ptr<ImpostorRenderer>> impostors = ImpostorRenderer::create(library);
+    if (!impostors) {
+        return impostors.error();
+    }
+    renderer->impostors_ = std::move(impostors.value());
     setInstanceAttributes(renderer->primitiveArray_.get(), 0, 0);
     return renderer;
 }
@@ -299,6 +304,29 @@ Result<std::uint32_t> VegetationRenderer::addSpecies(std::shared_ptr<const Plant
         description.billboardError.push_back(
             description.billboardError.empty() ? 0.0f : float(level.epsilon / kBillboardPixels));
     }
+    // The impostors method's captures, drawn through the mesh path.
+    const auto drawModel = [&](const DrawInstance& instance, const glm::mat4& projection) {
+        if (instanceCapacity_ < sizeof(DrawInstance)) {
+            instanceCapacity_ = sizeof(DrawInstance);
+            glNamedBufferData(instanceBuffer_.get(), GLsizeiptr(instanceCapacity_), nullptr,
+                              GL_STREAM_DRAW);
+        }
+        glNamedBufferSubData(instanceBuffer_.get(), 0, sizeof(DrawInstance), &instance);
+        meshProgram_.use();
+        meshProgram_.setMat4("uProjection", projection);
+        meshProgram_.setFloat("uBand", float(transitionBand));
+        meshProgram_.setInt("uTexture", 0);
+        DrawRun run;
+        run.kind = DrawRun::Kind::Mesh;
+        run.instanceCount = 1;
+        drawMeshes(species->mesh, run, glm::vec2(0.0f, std::numeric_limits<float>::infinity()));
+        glBindVertexArray(0);
+    };
+    if (Status captured =
+            impostors_->addSpecies(std::uint32_t(species_.size()), description, drawModel);
+        !captured) {
+        return captured.error();
+    }
     lods_.push_back(description);
     assets_.push_back(asset);
     species_.push_back(std::move(species));
@@ -353,6 +381,10 @@ void VegetationRenderer::drawRing(const std::vector<const InstanceBatch*>& batch
         (1.0 + std::abs(projection[2][0])) / projection[0][0];  // tangent, right or left
     const double halfHeight = (1.0 + std::abs(projection[2][1])) / projection[1][1];
     LodSelector::setFrustum(selection, 2.0 * std::atan(halfHeight), halfWidth / halfHeight);
+    if (settings.method == VegetationMethod::Impostors) {
+        drawImpostors(batches, camera, projection, selection);
+        return;
+    }
 
     const auto selectStart = std::chrono::steady_clock::now();
     selector_.select(batches, lods_, camera, selection, selection_);
@@ -518,6 +550,22 @@ void VegetationRenderer::setLeafUniforms(ShaderProgram& program, std::uint32_t s
     program.setVec4("uAutumn", glm::vec4(state.autumnColour / luminance, state.autumn));
 }
 
+void VegetationRenderer::drawImpostors(const std::vector<const InstanceBatch*>& batches,
+                                       const Camera& camera, const glm::dmat4& projection,
+                                       LodSelectionSettings selection) {
+    const auto selectStart = std::chrono::steady_clock::now();
+    const std::vector<const InstanceBatch*> near =
+        impostors_->partition(batches, camera, selection, impostorSettings_);
+    selector_.select(near, lods_, camera, selection, selection_);
+    statistics_.selectSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - selectStart).count();
+    statistics_.consideredInstances = selection_.consideredInstances;
+    statistics_.visibleInstances = selection_.visibleInstances;
+    statistics_.drawnInstances = selection_.instances.size();
+    impostors_->draw(selection_, lods_, camera, projection, selection.pixelAngle,
+                     impostorSettings_);
+}
+
 bool VegetationRenderer::mayExceedPointSize(const DrawRun& run, double pixelAngle,
                                             double cornerTangent, double near) const {
     const SpeciesLod& lod = lods_[run.species];
@@ -590,7 +638,10 @@ void VegetationRenderer::drawShadow(const ShadowView& view) {
     selection.minimumPixels = settings.minimumPixels;
     selection.transitionBand = settings.transitionBand;
     selection.closeUpMesh = settings.closeUpMesh;
-    selection.method = settings.method;
+    // Impostors cast the LoD's shadows (an impostor faces the camera, not the sun).
+    selection.method =
+        settings.method == VegetationMethod::Impostors ? VegetationMethod::Lod : settings.method;
+    selection.closeUpMesh = settings.closeUpMesh && settings.method != VegetationMethod::Impostors;
     selection.near = -1.0e30;
     const glm::dmat4& projection = view.projection;
     const double halfWidth = 1.0 / projection[0][0];

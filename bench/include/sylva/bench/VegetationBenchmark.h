@@ -36,6 +36,7 @@ struct VegetationBenchmarkOptions {
     bool occlusion = true;
     bool points = true;  // point clouds with approximate visible sets (seed 000 ch. 3)
     bool dmbbc = true;   // displacement-mapped billboard clouds (seed 000 ch. 5)
+    bool impostors = true;  // the impostors method (issue 21)
 };
 
 struct VegetationBenchmarkResult {

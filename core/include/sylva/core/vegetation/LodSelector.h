@@ -111,6 +111,8 @@ enum class VegetationMethod : std::uint8_t {
     // Displacement-mapped billboard clouds (seed 000 ch. 5): the billboard levels,
     // selected like Billboard, ray-marched as boxes.
     DisplacedBillboard,
+    Impostors,  // view-direction and group impostors (seeds 004, 000 ch. 7): one transform
+                // per visible instance, in the species' mesh run, for ImpostorRenderer
 };
 
 struct LodSelectionSettings {

@@ -28,6 +28,7 @@
 #include "sylva/render/gl/ShaderLibrary.h"
 #include "sylva/render/gl/ShaderProgram.h"
 #include "sylva/render/shadows/ShadowCaster.h"
+#include "sylva/render/vegetation/ImpostorRenderer.h"
 
 namespace sylva::render {
 
@@ -118,6 +119,10 @@ public:
     const VegetationStatistics& statistics() const { return statistics_; }
     // The selection of the last draw() (with occlusion culling: of its farthest ring).
     const LodSelection& lastSelection() const { return selection_; }
+    // The impostors method (VegetationMethod::Impostors): its settings and the last
+    // frame's counts (single impostors, groups, group renders, validity tests).
+    void setImpostorSettings(const ImpostorSettings& settings) { impostorSettings_ = settings; }
+    const ImpostorStatistics& impostorStatistics() const { return impostors_->statistics(); }
 
 private:
     VegetationRenderer() = default;
@@ -141,6 +146,9 @@ private:
     // The `points` method: the selection's Primitives runs as point clouds.
     void drawPoints(const glm::dmat4& projection, double near, int pixelsWide, int pixelsHigh,
                     double pixelAngle);
+    // The impostors method's draw(): groups split off, the rest selected and drawn.
+    void drawImpostors(const std::vector<const InstanceBatch*>& batches, const Camera& camera,
+                       const glm::dmat4& projection, LodSelectionSettings selection);
     void drawMeshes(const std::vector<std::unique_ptr<VegetationMesh>>& meshes, const DrawRun& run,
                     glm::vec2 interval);
 
@@ -171,6 +179,8 @@ private:
     std::unique_ptr<PointCloudRenderer> pointClouds_;
     std::unique_ptr<DisplacedBillboardRenderer> displacedBillboards_;
     std::vector<std::shared_ptr<const PlantAsset>> assets_;  // per species (the methods' input)
+    std::unique_ptr<ImpostorRenderer> impostors_;
+    ImpostorSettings impostorSettings_;
 };
 
 }  // namespace sylva::render
