@@ -1,7 +1,8 @@
 // `sylva bench vegetation [--json] [--size WxH] [--trees N] [--leaves N] [--frames N]
 // [--reference-scale N] [--no-scaling] [--methods lod,bbc,mesh] [--write-frames DIR] [--gl B]`: the
 // vegetation renderer benchmark of issue 7 (bench/VegetationBenchmark.h). Prints the metrics as
-// JSON with --json, else one line per metric.
+// JSON with --json, else one line per metric. `--methods` also takes `farfield` (the far-field
+// canopy's pass, bench/FarFieldBenchmark.h; part of the default run).
 #include <cstdio>
 
 #include "CommandLine.h"
@@ -56,7 +57,7 @@ int runVegetationBench(const std::vector<std::string>& arguments) {
     }
     options.scaling = !command.has("no-scaling");
     if (std::optional<std::string> methods = command.get("methods")) {
-        options.lod = options.billboards = options.mesh = false;
+        options.lod = options.billboards = options.mesh = options.farField = false;
         std::size_t start = 0;
         while (start <= methods->size()) {
             const std::size_t end = std::min(methods->find(',', start), methods->size());
@@ -67,9 +68,11 @@ int runVegetationBench(const std::vector<std::string>& arguments) {
                 options.billboards = true;
             } else if (method == "mesh") {
                 options.mesh = true;
+            } else if (method == "farfield") {
+                options.farField = true;
             } else {
-                reportError("--methods expects a comma-separated list of lod, bbc and mesh (got '" +
-                            method + "')");
+                reportError("--methods expects a comma-separated list of lod, bbc, mesh, " +
+                            std::string("farfield (got '") + method + "')");
                 return 2;
             }
             start = end + 1;

@@ -31,6 +31,7 @@ struct VegetationBenchmarkOptions {
     // The methods to run (profiling); without the mesh there is no reference image and
     // no RMSE, without the LoD no scaling runs.
     bool lod = true, billboards = true, mesh = true;
+    bool farField = true;  // the far-field canopy's pass against the terrain's (FarFieldBenchmark)
 };
 
 struct VegetationBenchmarkResult {

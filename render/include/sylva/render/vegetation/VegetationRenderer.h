@@ -27,6 +27,7 @@
 #include "sylva/render/gl/ShaderLibrary.h"
 #include "sylva/render/gl/ShaderProgram.h"
 #include "sylva/render/shadows/ShadowCaster.h"
+#include "sylva/render/vegetation/FarFieldFade.h"
 
 namespace sylva::render {
 
@@ -40,6 +41,9 @@ struct VegetationSettings {
     double transitionBand = 0.35;  // screen-door fade width, in ln(error)
     bool closeUpMesh = true;       // hand over from the finest LoD to the source mesh
     float normalNoise = 0.6f;      // normal perturbation of ellipsoids (§3.4.1)
+    // The hand-over to the far-field canopy (FarFieldCanopy sets it per frame): trees drop
+    // the pixels the canopy takes; disabled by default.
+    FarFieldFade farField;
 };
 
 struct VegetationStatistics {
