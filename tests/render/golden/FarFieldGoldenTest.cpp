@@ -70,7 +70,7 @@ source stand : plants {
     models = [@oak]
     seed = 5
 }
-scenario stand { layers = [@ground, @colour, @normals, @stand] }
+scenario crest_stand { layers = [@ground, @colour, @normals, @stand] }
 render { vegetation_distance = 6km; far_field_band = 500m }
 )sylva";
 
@@ -107,7 +107,7 @@ protected:
         Result<TerrainLayers> layers = graph_->terrainLayers(*model_, "");
         ASSERT_TRUE(layers) << layers.error().message;
         layers_ = layers.value();
-        Result<TerrainLayers> stand = graph_->terrainLayers(*model_, "stand");
+        Result<TerrainLayers> stand = graph_->terrainLayers(*model_, "crest_stand");
         ASSERT_TRUE(stand) << stand.error().message;
         stand_ = stand.value();
         evaluator_ = new TileEvaluator(TileFormat{256, 2});
@@ -279,7 +279,11 @@ TEST_F(FarFieldGolden, SilhouetteHeightMatchesTheCanopyHeight) {
 // subtracts the mesh); its largest spike (a frame's change above both neighbours') stays
 // under that test's bound (1.5) with the dithered hand-over, and is larger without the far
 // field, where the whole stand appears at once as it crosses the instance distance.
-TEST_F(FarFieldGolden, DollyAcrossTheInstanceDistanceHasNoPopping) {
+// DISABLED: in its first run (2026-12-02) every frame of the stand scenario equalled the
+// bare terrain's (all changes 0.00): the 'ground > 799' crest mask is not resolved by the
+// band-limited levels the stand is sampled from, so no tree or canopy was drawn. It needs
+// a stand the mask resolves (e.g. a latitude band) before it can measure anything.
+TEST_F(FarFieldGolden, DISABLED_DollyAcrossTheInstanceDistanceHasNoPopping) {
     TerrainLayers bare = stand_;
     bare.plants.clear();
     constexpr int kFrames = 30;
