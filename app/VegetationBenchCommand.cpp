@@ -1,7 +1,9 @@
 // `sylva bench vegetation [--json] [--size WxH] [--trees N] [--leaves N] [--frames N]
-// [--reference-scale N] [--no-scaling] [--no-occlusion] [--methods lod,bbc,mesh,points,dmbbc]
-// [--write-frames DIR] [--gl B]`: the vegetation renderer benchmark of issue 7
-// (bench/VegetationBenchmark.h). Prints the metrics as JSON with --json, else one line per metric.
+// [--reference-scale N] [--no-scaling] [--no-occlusion]
+// [--methods lod,bbc,mesh,points,dmbbc,impostors,farfield] [--write-frames DIR] [--gl B]`: the
+// vegetation renderer benchmark of issue 7 (bench/VegetationBenchmark.h). Prints the metrics as
+// JSON with --json, else one line per metric. `farfield` is the far-field canopy's pass
+// (bench/FarFieldBenchmark.h; part of the default run).
 #include <cstdio>
 
 #include "CommandLine.h"
@@ -58,7 +60,7 @@ int runVegetationBench(const std::vector<std::string>& arguments) {
     options.scaling = !command.has("no-scaling");
     options.occlusion = !command.has("no-occlusion");
     if (std::optional<std::string> methods = command.get("methods")) {
-        options.lod = options.billboards = options.mesh = false;
+        options.lod = options.billboards = options.mesh = options.farField = false;
         options.points = options.dmbbc = false;
         options.impostors = false;
         std::size_t start = 0;
@@ -77,10 +79,12 @@ int runVegetationBench(const std::vector<std::string>& arguments) {
                 options.dmbbc = true;
             } else if (method == "impostors") {
                 options.impostors = true;
+            } else if (method == "farfield") {
+                options.farField = true;
             } else {
                 reportError(
-                    "--methods expects a comma-separated list of lod, bbc, mesh, points, dmbbc and "
-                    "impostors (got '" +
+                    "--methods expects a comma-separated list of lod, bbc, mesh, points, dmbbc, "
+                    "impostors and farfield (got '" +
                     method + "')");
                 return 2;
             }

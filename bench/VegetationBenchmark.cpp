@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "BenchForest.h"
+#include "FarFieldBenchmark.h"
 #include "sylva/bench/BenchmarkMetrics.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/image/ImageWriter.h"
@@ -482,6 +483,19 @@ std::string VegetationBenchmarkResult::json() const {
 
 Result<VegetationBenchmarkResult> runVegetationBenchmark(
     const ShaderLibrary& library, const VegetationBenchmarkOptions& options) {
+    VegetationBenchmarkResult farField;
+    if (options.farField) {
+        logProgress("far-field canopy (demo relief, ground camera, five headings)");
+        Result<std::map<std::string, double>> metrics =
+            runFarFieldBenchmark(library, options.width, options.height);
+        if (!metrics) {
+            return metrics.error();
+        }
+        farField.metrics = metrics.value();
+    }
+    if (!options.lod && !options.billboards && !options.mesh) {
+        return farField;  // --methods farfield: nothing else asked for
+    }
     // The plant: a generated oak, its LoD and billboard clouds (not timed).
     logProgress("building the plant (generator, LoD, billboard clouds)");
     Result<std::shared_ptr<PlantAsset>> asset = buildOak(options.leaves);
@@ -520,6 +534,7 @@ Result<VegetationBenchmarkResult> runVegetationBenchmark(
             return measured.error();
         }
     }
+    result.metrics.insert(farField.metrics.begin(), farField.metrics.end());
     return result;
 }
 

@@ -724,7 +724,13 @@ KindSchema renderBlock() {
              number("vegetation_distance", Dimension::Length, 6000.0, 10.0, 1.0e6,
                     "Plants farther than this are left to the terrain's colour; nearer ones are "
                     "drawn "
-                    "while they cover at least 1.5 pixels.")}};
+                    "while they cover at least 1.5 pixels."),
+             number("far_field_band", Dimension::Length, 500.0, 0.0, 5000.0,
+                    "Beyond the plants that are drawn, the forest canopy is drawn as a displaced "
+                    "layer over the terrain (heights from the plants' density and species), so "
+                    "forested ridges keep their silhouette to the horizon; the trees hand over "
+                    "to it by a screen-door fade over this width. 0 switches the far field "
+                    "off.")}};
 }
 
 SchemaRegistry makeBuiltin() {

@@ -107,6 +107,7 @@ Result<RenderSetup> RenderSetup::fromModel(const ProjectModel& model, int overri
     settings.vegetation.quality = renderBlock.optionalNumber("vegetation_quality").value_or(1.0);
     settings.vegetation.maximumDistance =
         renderBlock.optionalNumber("vegetation_distance").value_or(6000.0);
+    settings.farField.band = renderBlock.optionalNumber("far_field_band").value_or(500.0);
     return setup;
 }
 

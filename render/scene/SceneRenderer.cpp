@@ -29,6 +29,11 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const ShaderLibrary
         return vegetation.error();
     }
     renderer->vegetation_ = std::move(vegetation.value());
+    Result<std::unique_ptr<FarFieldCanopy>> farField = FarFieldCanopy::create(library, settings);
+    if (!farField) {
+        return farField.error();
+    }
+    renderer->farField_ = std::move(farField.value());
     Result<std::unique_ptr<MeshRenderer>> meshes = MeshRenderer::create(library);
     if (!meshes) {
         return meshes.error();
@@ -197,10 +202,11 @@ Status SceneRenderer::drawSample(const Camera& camera, const glm::dmat4& project
     statistics_.terrainPassSeconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - terrainStart).count();
     drawMeshes(camera, projection, settings);
+    const VegetationSettings vegetation = drawFarField(camera, projection, settings);
     const auto vegetationStart = std::chrono::steady_clock::now();
     if (!batches.empty()) {
         vegetation_->draw(batches, camera, projection, near_, settings.width, settings.height,
-                          settings.vegetation);
+                          vegetation);
         glFinish();  // only to time the pass
         statistics_.vegetation = vegetation_->statistics();
         statistics_.vegetationPassSeconds +=
@@ -256,6 +262,9 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     }
     if (Status streamed = streamMeshes(layers, provider, camera, settings); !streamed) {
         return streamed.error();
+    }
+    if (Status prepared = prepareFarField(layers, provider, camera, levels, settings); !prepared) {
+        return prepared.error();
     }
     near_ = std::clamp(0.3 * statistics_.heightAboveTerrain, 0.02, 1.0e4);
     const glm::dmat4 projection = SceneRenderer::projection(
@@ -341,6 +350,36 @@ void SceneRenderer::drawMeshes(const Camera& camera, const glm::dmat4& projectio
     statistics_.meshes = meshes_->statistics();
     statistics_.meshPassSeconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+Status SceneRenderer::prepareFarField(const TerrainLayers& layers, TileProvider& provider,
+                                      const Camera& camera, const LevelRange& levels,
+                                      const RenderSettings& settings) {
+    statistics_.farFieldPassSeconds = 0;
+    const double pixelAngle = 2.0 * std::tan(camera.verticalFov / 2) / settings.height;
+    Result<FarFieldFrame> frame = farField_->update(
+        layers, provider, camera, levels, statistics_.heightAboveTerrain, pixelAngle,
+        settings.vegetation, settings.farField, settings.waitForTiles);
+    if (!frame) {
+        return frame.error();
+    }
+    statistics_.farField = frame.value();
+    return Status::success();
+}
+
+VegetationSettings SceneRenderer::drawFarField(const Camera& camera, const glm::dmat4& projection,
+                                               const RenderSettings& settings) {
+    VegetationSettings vegetation = settings.vegetation;
+    if (!statistics_.farField.drawn) {
+        return vegetation;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    farField_->draw(camera, projection, near_, settings.width, settings.height, settings.ocean);
+    glFinish();  // only to time the pass
+    statistics_.farFieldPassSeconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    vegetation.farField = farField_->fade();
+    return vegetation;
 }
 
 double SceneRenderer::meterEv100(const Camera& camera, double groundHeight,

@@ -35,9 +35,9 @@ Result<std::unique_ptr<TerrainRenderer>> TerrainRenderer::create(const ShaderLib
     }
     std::unique_ptr<TerrainRenderer> renderer(new TerrainRenderer());
     renderer->settings_ = settings;
-    Result<ShaderProgram> program = ShaderProgram::create(
-        library,
-        {{GL_VERTEX_SHADER, "terrain/terrain.vert"}, {GL_FRAGMENT_SHADER, "terrain/terrain.frag"}});
+    Result<ShaderProgram> program =
+        ShaderProgram::create(library, {{GL_VERTEX_SHADER, "terrain/terrain.vert"},
+                                        {GL_FRAGMENT_SHADER, settings.fragmentShader}});
     if (!program) {
         return program.error();
     }

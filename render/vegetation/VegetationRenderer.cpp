@@ -440,6 +440,7 @@ void VegetationRenderer::drawRing(const std::vector<const InstanceBatch*>& batch
         program.setMat4("uProjection", projectionFloat);
         program.setFloat("uNear", float(near));
         program.setFloat("uBand", band);
+        settings.farField.apply(program, projection, near, pixelsWide, pixelsHigh);
         if (pass == 0) {
             program.setFloat("uNormalNoise", settings.normalNoise);
             program.setVec2("uViewport", viewport);
@@ -483,6 +484,7 @@ void VegetationRenderer::drawRing(const std::vector<const InstanceBatch*>& batch
     meshProgram_.use();
     meshProgram_.setMat4("uProjection", projectionFloat);
     meshProgram_.setFloat("uBand", band);
+    settings.farField.apply(meshProgram_, projection, near, pixelsWide, pixelsHigh);
     meshProgram_.setInt("uTexture", 0);
     constexpr float kInfinity = std::numeric_limits<float>::infinity();
     for (const DrawRun& run : selection_.runs) {
@@ -734,6 +736,7 @@ void VegetationRenderer::drawShadowRuns(const ShadowView& view,
     meshProgram_.use();
     meshProgram_.setMat4("uProjection", projection);
     meshProgram_.setFloat("uBand", band);
+    FarFieldFade{}.apply(meshProgram_, glm::dmat4(1.0), 1.0, 1, 1);  // no hand-over from the sun
     meshProgram_.setInt("uTexture", 0);
     constexpr float kInfinity = std::numeric_limits<float>::infinity();
     for (const DrawRun& run : shadowSelection_.runs) {

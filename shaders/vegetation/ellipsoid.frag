@@ -7,6 +7,7 @@
 // its cell count limited by the screen-space derivative (the mip level fwidth allows);
 // normal perturbed by the noise; screen-door LoD fades.
 #include "vegetation.glsl"
+#include "farfield_fade.glsl"
 
 layout(location = 0) flat in mat3 vToLocal;
 layout(location = 3) flat in vec3 vLocalCenter;
@@ -48,6 +49,9 @@ void main() {
     float footprint = max(max(width.x, width.y), width.z);
     if (discriminant < 0.0 || t < -1.0 || across <= 0.0) {
         discard;
+    }
+    if (farFieldCanopyPixel()) {
+        discard;  // the far-field canopy has this pixel (farfield_fade.glsl)
     }
     float dither = ditherValue(gl_FragCoord.xy, uintBitsToFloat(vSeedDither.y));
     if (dither >= vFadeNoise.x || dither < vFadeNoise.y) {

@@ -3,6 +3,7 @@
 // line is described relative to its start, so no term grows with the camera distance
 // (the intersection is in capsule.glsl).
 #include "vegetation.glsl"
+#include "farfield_fade.glsl"
 #include "capsule.glsl"
 
 layout(location = 0) in vec3 vFromStart;
@@ -17,6 +18,9 @@ layout(location = 0) out vec4 outAlbedo;
 layout(location = 1) out vec4 outNormal;
 
 void main() {
+    if (farFieldCanopyPixel()) {
+        discard;  // the far-field canopy has this pixel (farfield_fade.glsl)
+    }
     float dither = ditherValue(gl_FragCoord.xy, vFadeEnd.w);
     if (dither >= vFadeEnd.x || dither < vFadeEnd.y) {
         discard;

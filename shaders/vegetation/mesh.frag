@@ -2,6 +2,7 @@
 // Mesh fragment: base colour × texture, alpha test for leaves (alpha < cutoff is
 // discarded, seed 001 §3.2), two-sided normals, screen-door fade at the interval ends.
 #include "vegetation.glsl"
+#include "farfield_fade.glsl"
 
 layout(location = 0) in vec3 vNormal;
 layout(location = 1) in vec2 vUv;
@@ -20,6 +21,9 @@ layout(location = 0) out vec4 outAlbedo;
 layout(location = 1) out vec4 outNormal;
 
 void main() {
+    if (farFieldCanopyPixel()) {
+        discard;  // the far-field canopy has this pixel (farfield_fade.glsl)
+    }
     float dither = ditherValue(gl_FragCoord.xy, vTintDither.w);
     if (dither >= vFade.x || dither < vFade.y) {
         discard;

@@ -37,6 +37,7 @@ struct VegetationBenchmarkOptions {
     bool points = true;  // point clouds with approximate visible sets (seed 000 ch. 3)
     bool dmbbc = true;   // displacement-mapped billboard clouds (seed 000 ch. 5)
     bool impostors = true;  // the impostors method (issue 21)
+    bool farField = true;  // the far-field canopy's pass against the terrain's (FarFieldBenchmark)
 };
 
 struct VegetationBenchmarkResult {

@@ -26,6 +26,7 @@
 #include "sylva/render/shading/ShadingPass.h"
 #include "sylva/render/shadows/ShadowMaps.h"
 #include "sylva/render/terrain/TerrainRenderer.h"
+#include "sylva/render/vegetation/FarFieldCanopy.h"
 #include "sylva/render/vegetation/VegetationRenderer.h"
 
 namespace sylva::render {
@@ -58,6 +59,9 @@ struct RenderSettings {
     // autumn; Phenology) and their growth since planting (GrowthCurve). None: full grown,
     // full leaf. Batch rendering sets it from render `date`, else the view's time.
     std::optional<PlantDate> plantDate;
+    // The far-field canopy beyond vegetation.maximumDistance (FarFieldCanopy); off while
+    // that distance is 0 (the C++ default) or band is 0.
+    FarFieldSettings farField;
     MeshSettings meshes;  // buildings and models of the scenario's `meshes` layers
     // Sun shadows (cascaded shadow maps, seed 001 §7.1): the terrain always casts; more
     // casters (not owned; e.g. the mesh/building renderer of issue 17, test objects) are
@@ -90,6 +94,8 @@ struct RenderStatistics {
     double shadowPassSeconds = 0;  // all cascades of the shadow maps (to glFinish)
     VegetationStatistics vegetation;
     VegetationStreamStatistics vegetationStream;
+    double farFieldPassSeconds = 0;  // the far-field canopy's G-buffer passes (to glFinish)
+    FarFieldFrame farField;          // its hand-over distances and levels
 };
 
 class SceneRenderer {
@@ -115,6 +121,7 @@ public:
     double near() const { return near_; }
     TerrainRenderer& terrain() { return *terrain_; }
     VegetationRenderer& vegetation() { return *vegetation_; }
+    FarFieldCanopy& farField() { return *farField_; }
     MeshRenderer& meshes() { return *meshes_; }
     // The shadow maps of the last render (no cascades when shadows were off).
     const ShadowMaps& shadowMaps() const { return *shadowMaps_; }
@@ -142,6 +149,13 @@ private:
     // scenario's meshes and settings.shadowCasters.
     Status drawShadowMaps(const Camera& camera, const std::vector<const InstanceBatch*>& batches,
                           const RenderSettings& settings);
+    // The far-field canopy of the frame: its sources, hand-over and clipmaps (once per
+    // image); the draw (once per sample) returns the trees' settings with its fade.
+    Status prepareFarField(const TerrainLayers& layers, TileProvider& provider,
+                           const Camera& camera, const LevelRange& levels,
+                           const RenderSettings& settings);
+    VegetationSettings drawFarField(const Camera& camera, const glm::dmat4& projection,
+                                    const RenderSettings& settings);
     // EV100 of an incident-light meter at the ground under the camera (see RenderSettings).
     double meterEv100(const Camera& camera, double groundHeight, const RenderSettings& settings);
     // The stream layers of the scenario's plants sources; registers each species'
@@ -156,6 +170,7 @@ private:
 
     std::unique_ptr<TerrainRenderer> terrain_;
     std::unique_ptr<VegetationRenderer> vegetation_;
+    std::unique_ptr<FarFieldCanopy> farField_;
     std::unique_ptr<MeshRenderer> meshes_;
     bool meshesStreamed_ = false;  // this image's scenario has mesh layers
     double groundHeight_ = 0;      // metres: the ground under the camera (prepareTerrain)

@@ -40,6 +40,9 @@ struct TerrainSettings {
     int columns = 256;                 // bearing steps of the ring mesh
     int ringsPerLevel = 24;            // rings per level
     double maxTerrainHeight = 9000.0;  // metres, for the horizon safety margin
+    // The G-buffer fragment shader (ShaderLibrary path); the far-field canopy draws the
+    // same rings with its own (vegetation/farfield_canopy.frag).
+    std::string fragmentShader = "terrain/terrain.frag";
 };
 
 struct TerrainFrameStatistics {
@@ -92,6 +95,8 @@ public:
 
     const TerrainFrameStatistics& statistics() const { return statistics_; }
     const TerrainSettings& settings() const { return settings_; }
+    // The G-buffer program (fragmentShader), for a derived pass's own uniforms.
+    ShaderProgram& gbufferProgram() { return program_; }
 
 private:
     TerrainRenderer() = default;

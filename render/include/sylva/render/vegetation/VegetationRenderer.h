@@ -29,6 +29,7 @@
 #include "sylva/render/gl/ShaderProgram.h"
 #include "sylva/render/shadows/ShadowCaster.h"
 #include "sylva/render/vegetation/ImpostorRenderer.h"
+#include "sylva/render/vegetation/FarFieldFade.h"
 
 namespace sylva::render {
 
@@ -57,6 +58,9 @@ struct VegetationSettings {
     double occluderDistance = 50.0;  // metres: the first ring
     double occlusionRingRatio = 4.0;
     int occlusionRings = 3;
+    // The hand-over to the far-field canopy (FarFieldCanopy sets it per frame): trees drop
+    // the pixels the canopy takes; disabled by default.
+    FarFieldFade farField;
 };
 
 struct VegetationStatistics {

@@ -101,6 +101,10 @@ public:
     // sampled from: the coarsest with texels of at most two cells.
     int sampleLevel() const { return sampleLevel_; }
     double cellSize() const { return cellSize_; }  // metres
+    // The density mask the scattering reads (nullptr when none) and the block's parameters:
+    // what the far-field canopy (CanopyProfile) derives its heights and cover from.
+    const Source* density() const { return density_; }
+    const PlantsParameters& parameters() const { return parameters_; }
     const std::vector<std::string>& speciesNames() const { return speciesNames_; }
     // The plant model of each species, indexed like speciesNames(); nullptr for every
     // species when the block has no `models` (markers only). With `models`, graph build
