@@ -6,11 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 
-#include "OcclusionCuller.h"
 #include "DisplacedBillboardRenderer.h"
+#include "OcclusionCuller.h"
 #include "PointCloudRenderer.h"
 #include "sylva/core/base/Check.h"
 
@@ -69,7 +70,8 @@ struct VegetationRenderer::Species {
     std::uint32_t firstEllipsoid = 0, firstLine = 0;
     std::vector<std::unique_ptr<VegetationMesh>> mesh;
     std::vector<std::vector<std::unique_ptr<VegetationMesh>>> billboardLevels;
-    float leafLuminance = 0.1f;  // area-weighted mean luminance of the leaf ellipsoids
+    float leafLuminance = 0.1f;   // area-weighted mean luminance of the leaf ellipsoids
+    double transitionBand = 0.0;  // addSpecies' band (the impostor captures draw with it)
 };
 
 namespace {
@@ -304,33 +306,43 @@ Result<std::uint32_t> VegetationRenderer::addSpecies(std::shared_ptr<const Plant
         description.billboardError.push_back(
             description.billboardError.empty() ? 0.0f : float(level.epsilon / kBillboardPixels));
     }
-    // The impostors method's captures, drawn through the mesh path.
-    const auto drawModel = [&](const DrawInstance& instance, const glm::mat4& projection) {
-        if (instanceCapacity_ < sizeof(DrawInstance)) {
-            instanceCapacity_ = sizeof(DrawInstance);
-            glNamedBufferData(instanceBuffer_.get(), GLsizeiptr(instanceCapacity_), nullptr,
-                              GL_STREAM_DRAW);
-        }
-        glNamedBufferSubData(instanceBuffer_.get(), 0, sizeof(DrawInstance), &instance);
-        meshProgram_.use();
-        meshProgram_.setMat4("uProjection", projection);
-        meshProgram_.setFloat("uBand", float(transitionBand));
-        meshProgram_.setInt("uTexture", 0);
-        DrawRun run;
-        run.kind = DrawRun::Kind::Mesh;
-        run.instanceCount = 1;
-        drawMeshes(species->mesh, run, glm::vec2(0.0f, std::numeric_limits<float>::infinity()));
-        glBindVertexArray(0);
-    };
-    if (Status captured =
-            impostors_->addSpecies(std::uint32_t(species_.size()), description, drawModel);
-        !captured) {
-        return captured.error();
-    }
+    species->transitionBand = transitionBand;
     lods_.push_back(description);
     assets_.push_back(asset);
     species_.push_back(std::move(species));
     return std::uint32_t(species_.size() - 1);
+}
+
+// The impostors method's captures (ImpostorRenderer::addSpecies), made on its first use so
+// the other methods do not pay for 17 views × 3 resolutions per species; drawn through the
+// mesh path, in species order.
+Status VegetationRenderer::captureImpostors() {
+    while (impostors_->speciesCount() < species_.size()) {
+        const std::uint32_t index = std::uint32_t(impostors_->speciesCount());
+        Species* species = species_[index].get();
+        const double transitionBand = species->transitionBand;
+        const auto drawModel = [&](const DrawInstance& instance, const glm::mat4& projection) {
+            if (instanceCapacity_ < sizeof(DrawInstance)) {
+                instanceCapacity_ = sizeof(DrawInstance);
+                glNamedBufferData(instanceBuffer_.get(), GLsizeiptr(instanceCapacity_), nullptr,
+                                  GL_STREAM_DRAW);
+            }
+            glNamedBufferSubData(instanceBuffer_.get(), 0, sizeof(DrawInstance), &instance);
+            meshProgram_.use();
+            meshProgram_.setMat4("uProjection", projection);
+            meshProgram_.setFloat("uBand", float(transitionBand));
+            meshProgram_.setInt("uTexture", 0);
+            DrawRun run;
+            run.kind = DrawRun::Kind::Mesh;
+            run.species = index;
+            run.instanceCount = 1;
+            drawMeshes(species->mesh, run, glm::vec2(0.0f, std::numeric_limits<float>::infinity()));
+            glBindVertexArray(0);
+        };
+        if (Status captured = impostors_->addSpecies(index, lods_[index], drawModel); !captured)
+            return captured;
+    }
+    return Status::success();
 }
 
 void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches,
@@ -343,8 +355,12 @@ void VegetationRenderer::draw(const std::vector<const InstanceBatch*>& batches,
         return;
     }
     // Rings nearest first; with culling, each is culled against the depth drawn so far.
+    // Impostors are drawn in one pass (their group impostors span the distances, and
+    // their statistics are per pass).
     const std::vector<OcclusionRing> rings =
-        OcclusionCuller::rings(settings, batches, camera.position);
+        settings.method == VegetationMethod::Impostors
+            ? std::vector<OcclusionRing>(1)
+            : OcclusionCuller::rings(settings, batches, camera.position);
     for (OcclusionRing ring : rings) {
         if (settings.occlusionCulling) {
             const auto start = std::chrono::steady_clock::now();
@@ -548,13 +564,21 @@ void VegetationRenderer::setLeafUniforms(ShaderProgram& program, std::uint32_t s
     const LeafState state =
         leaves && species < leafStates_.size() ? leafStates_[species] : LeafState{};
     program.setFloat("uLeafFraction", state.leafFraction);
-    const float luminance = std::max(species_[species]->leafLuminance, 1e-4f);
+    const float luminance =
+        species < species_.size() ? std::max(species_[species]->leafLuminance, 1e-4f) : 1.0f;
     program.setVec4("uAutumn", glm::vec4(state.autumnColour / luminance, state.autumn));
 }
 
 void VegetationRenderer::drawImpostors(const std::vector<const InstanceBatch*>& batches,
                                        const Camera& camera, const glm::dmat4& projection,
                                        LodSelectionSettings selection) {
+    if (Status captured = captureImpostors(); !captured) {
+        // A GL failure (an incomplete capture target): said once, the plants not drawn.
+        if (!impostorFailureReported_)
+            std::fprintf(stderr, "sylva: impostors: %s\n", captured.error().message.c_str());
+        impostorFailureReported_ = true;
+        return;
+    }
     const auto selectStart = std::chrono::steady_clock::now();
     const std::vector<const InstanceBatch*> near =
         impostors_->partition(batches, camera, selection, impostorSettings_);

@@ -81,6 +81,8 @@ public:
     // the framebuffer binding, viewport and clip control. Fails when a capture target
     // cannot be created.
     Status addSpecies(std::uint32_t species, const SpeciesLod& lod, const ModelDrawer& drawModel);
+    // Species captured so far (addSpecies is called in species order).
+    std::size_t speciesCount() const { return species_.size(); }
 
     // Splits `batches` into tiles drawn as group impostors (kept by the renderer for this
     // frame) and the rest (returned) for the caller's selection. `selection` carries the

@@ -28,8 +28,8 @@
 #include "sylva/render/gl/ShaderLibrary.h"
 #include "sylva/render/gl/ShaderProgram.h"
 #include "sylva/render/shadows/ShadowCaster.h"
-#include "sylva/render/vegetation/ImpostorRenderer.h"
 #include "sylva/render/vegetation/FarFieldFade.h"
+#include "sylva/render/vegetation/ImpostorRenderer.h"
 
 namespace sylva::render {
 
@@ -136,6 +136,8 @@ private:
     bool mayExceedPointSize(const DrawRun& run, double pixelAngle, double cornerTangent,
                             double near) const;
     void drawShadowRuns(const ShadowView& view, const VegetationSettings& settings);
+    // The impostor captures of species not captured yet (on the impostors method's first use).
+    Status captureImpostors();
     // uLeafFraction and uAutumn of `species` (full leaf when `leaves` is false).
     void setLeafUniforms(ShaderProgram& program, std::uint32_t species, bool leaves);
     // One selection and its draws (draw() runs one per occlusion ring): instances with
@@ -184,6 +186,7 @@ private:
     std::unique_ptr<DisplacedBillboardRenderer> displacedBillboards_;
     std::vector<std::shared_ptr<const PlantAsset>> assets_;  // per species (the methods' input)
     std::unique_ptr<ImpostorRenderer> impostors_;
+    bool impostorFailureReported_ = false;
     ImpostorSettings impostorSettings_;
 };
 
