@@ -139,10 +139,9 @@ void logProgress(const char* text) {
 constexpr double kSegmentSeconds = 5.0;  // path time per segment, for the 1/25 s step
 constexpr double kNextFrame = 1.0 / (25.0 * kSegmentSeconds);
 
-constexpr VegetationMethod kMethods[] = {VegetationMethod::Lod, VegetationMethod::Billboard,
-                                         VegetationMethod::Mesh, VegetationMethod::Points,
-                                         VegetationMethod::DisplacedBillboard,
-                                         VegetationMethod::Impostors};
+constexpr VegetationMethod kMethods[] = {
+    VegetationMethod::Lod,    VegetationMethod::Billboard,          VegetationMethod::Mesh,
+    VegetationMethod::Points, VegetationMethod::DisplacedBillboard, VegetationMethod::Impostors};
 
 // The flat meadow, the renderer with the oak as its one species, and timed frames.
 class ForestScene {

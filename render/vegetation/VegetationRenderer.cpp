@@ -496,7 +496,19 @@ void VegetationRenderer::drawRing(const std::vector<const InstanceBatch*>& batch
     }
     glDisable(GL_PROGRAM_POINT_SIZE);
 
-    // Meshes: the source model (close-ups, the Mesh method) and billboard-cloud levels.
+    drawMeshRuns(projection, near, pixelsWide, pixelsHigh, settings, handover);
+    glBindVertexArray(0);
+    if (settings.method == VegetationMethod::DisplacedBillboard) {
+        drawDisplacedBillboards(projectionFloat, near, viewport, band);
+    }
+}
+
+// The selection's Mesh runs (close-ups, the Mesh method) and billboard-cloud levels.
+void VegetationRenderer::drawMeshRuns(const glm::dmat4& projection, double near, int pixelsWide,
+                                      int pixelsHigh, const VegetationSettings& settings,
+                                      bool handover) {
+    const glm::mat4 projectionFloat(projection);
+    const float band = float(settings.transitionBand);
     meshProgram_.use();
     meshProgram_.setMat4("uProjection", projectionFloat);
     meshProgram_.setFloat("uBand", band);
@@ -520,10 +532,6 @@ void VegetationRenderer::drawRing(const std::vector<const InstanceBatch*>& batch
             drawMeshes(species.billboardLevels[level], run, glm::vec2(minimum, maximum));
             statistics_.billboardInstances += run.instanceCount;
         }
-    }
-    glBindVertexArray(0);
-    if (settings.method == VegetationMethod::DisplacedBillboard) {
-        drawDisplacedBillboards(projectionFloat, near, viewport, band);
     }
 }
 

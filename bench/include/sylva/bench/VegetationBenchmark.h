@@ -34,10 +34,10 @@ struct VegetationBenchmarkOptions {
     // Occlusion culling of the plants on the path (VegetationSettings::occlusionCulling);
     // `culled_fraction_inside_forest` is measured with it on either way.
     bool occlusion = true;
-    bool points = true;  // point clouds with approximate visible sets (seed 000 ch. 3)
-    bool dmbbc = true;   // displacement-mapped billboard clouds (seed 000 ch. 5)
+    bool points = true;     // point clouds with approximate visible sets (seed 000 ch. 3)
+    bool dmbbc = true;      // displacement-mapped billboard clouds (seed 000 ch. 5)
     bool impostors = true;  // the impostors method (issue 21)
-    bool farField = true;  // the far-field canopy's pass against the terrain's (FarFieldBenchmark)
+    bool farField = true;   // the far-field canopy's pass against the terrain's (FarFieldBenchmark)
 };
 
 struct VegetationBenchmarkResult {

@@ -136,6 +136,9 @@ private:
     bool mayExceedPointSize(const DrawRun& run, double pixelAngle, double cornerTangent,
                             double near) const;
     void drawShadowRuns(const ShadowView& view, const VegetationSettings& settings);
+    // drawRing's Mesh and Billboard runs (the source mesh and billboard-cloud levels).
+    void drawMeshRuns(const glm::dmat4& projection, double near, int pixelsWide, int pixelsHigh,
+                      const VegetationSettings& settings, bool handover);
     // The impostor captures of species not captured yet (on the impostors method's first use).
     Status captureImpostors();
     // uLeafFraction and uAutumn of `species` (full leaf when `leaves` is false).
