@@ -80,7 +80,7 @@ end
 begin "bench vegetation --methods with an unknown method -> exit 2"
 run bench vegetation --methods lod,trees
 expect_rc 2
-expect_stderr "sylva: --methods expects a comma-separated list of lod, bbc and mesh (got 'trees')"
+expect_stderr "sylva: --methods expects a comma-separated list of lod, bbc, mesh, points, dmbbc, impostors and farfield (got 'trees')"
 end
 
 begin "bench tiles without sample data -> exit 1 naming the file and scripts/fetch-samples"

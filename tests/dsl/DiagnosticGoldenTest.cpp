@@ -198,7 +198,7 @@ TEST(DiagnosticGolden, UnknownKeyword) {
 1 | sorce a : noise {}
   | ^^^^^ not a block keyword
   = help: did you mean 'source'?
-  = help: block keywords are: param, project, source, scenario, camera, views, render, compare, blend, path, ztv, shadow_study
+  = help: block keywords are: param, project, source, scenario, camera, views, render, compare, blend, path, ztv, shadow_study, photo
 )SYLVA");
 }
 
