@@ -32,7 +32,7 @@ constexpr GLuint kUvAttribute = 6;              // after the instance rows (3–
 
 // A base colour texture: sRGB8 with alpha, so sampling returns linear colour; every mip
 // level (glGenerateTextureMipmap), repeating, trilinear with 8× anisotropy where offered.
-GlTexture uploadTexture(const RgbaImage& image) {
+GlTexture uploadTexture(const MeshTexture& image) {
     GlTexture texture = createGlTexture(GL_TEXTURE_2D);
     const GLuint id = texture.get();
     const int levels = 1 + int(std::floor(std::log2(double(std::max(image.width, image.height)))));
@@ -232,7 +232,7 @@ const MeshRenderer::ModelEntry& MeshRenderer::modelEntry(
                 levels.push_back(level.geometry.empty() ? nullptr : upload(level.geometry));
             entry.parts.push_back(std::move(levels));
         }
-        for (const RgbaImage& image : model->textures) {
+        for (const MeshTexture& image : model->textures) {
             entry.textures.push_back(uploadTexture(image));
         }
         found = models_.emplace(model.get(), std::move(entry)).first;

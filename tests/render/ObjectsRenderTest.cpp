@@ -313,8 +313,8 @@ TEST_F(ObjectsRender, BuildingHidesTheTreesBehindIt) {
         << "the building must hide the tree";
 }
 
-// The 4×4 texture of the textured-quad test: four colours in an arrangement that no flip,
-// transpose or rotation keeps, so a wrong u or v orientation fails.
+// The 4×4 blocks of the textured-quad test's texture: four colours in an arrangement that no
+// flip, transpose or rotation keeps, so a wrong u or v orientation fails.
 const std::uint8_t kQuadColors[4][3] = {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}, {255, 255, 0}};
 int quadTexel(int column, int row) {
     return (column * 3 + row * 5 + column * row) % 4;
@@ -323,19 +323,21 @@ int quadTexel(int column, int row) {
 // A 40 m square facing up, textured with the 4×4 texture: glTF (external .bin and .png) or
 // OBJ (+ MTL map_Kd). In the model frame (east, north) = (−x, z) of glTF, and the texture
 // coordinates are u = (20 − east) / 40, v = (north + 20) / 40 in both files (OBJ stores
-// 1 − v), so texel (⌊4u⌋, ⌊4v⌋) lies under every point of the square.
+// 1 − v), so block (⌊4u⌋, ⌊4v⌋) lies under every point of the square.
 std::filesystem::path writeTexturedQuad(const std::string& format) {
     const auto folder = std::filesystem::temp_directory_path() /
                         ("sylva-objects-" + std::to_string(::getpid())) / ("quad-" + format);
     std::filesystem::create_directories(folder);
     std::vector<std::uint8_t> pixels;
-    for (int row = 0; row < 4; ++row) {
-        for (int column = 0; column < 4; ++column) {
-            const std::uint8_t* c = kQuadColors[quadTexel(column, row)];
+    // 64 × 64 texels in 4 × 4 blocks of one colour: bilinear filtering blends colours only
+    // within half a texel (1/32 of a block) of a block border.
+    for (int row = 0; row < 64; ++row) {
+        for (int column = 0; column < 64; ++column) {
+            const std::uint8_t* c = kQuadColors[quadTexel(column / 16, row / 16)];
             pixels.insert(pixels.end(), {c[0], c[1], c[2], 255});
         }
     }
-    EXPECT_TRUE(ImageWriter::writeRgba8(folder / "quad.png", 4, 4, pixels));
+    EXPECT_TRUE(ImageWriter::writeRgba8(folder / "quad.png", 64, 64, pixels));
     // Corners (east, north): (20, −20), (20, 20), (−20, 20), (−20, −20), counter-clockwise
     // from above.
     const float east[4] = {20, 20, -20, -20}, north[4] = {-20, 20, 20, -20};

@@ -78,6 +78,18 @@ std::vector<HipRoofFace> hipRoof(const std::vector<glm::dvec2>& ring, double eav
             }
             face = clip(face, normal, limit);
         }
+        // Several sides meeting in one skeleton node leave repeated corners there.
+        std::vector<glm::dvec2> corners;
+        for (const glm::dvec2& p : face) {
+            if (corners.empty() || glm::length(p - corners.back()) > 1e-9 * scale) {
+                corners.push_back(p);
+            }
+        }
+        while (corners.size() > 1 &&
+               glm::length(corners.front() - corners.back()) <= 1e-9 * scale) {
+            corners.pop_back();
+        }
+        face = std::move(corners);
         if (face.size() < 3 || signedArea(face) <= 1e-12 * scale * scale) {
             continue;
         }

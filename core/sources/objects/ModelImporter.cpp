@@ -187,7 +187,8 @@ Result<int> materialTexture(const std::string& file, const tinygltf::Model& gltf
     if (!decoded) {
         return decoded.error();
     }
-    model.textures.push_back(std::move(decoded.value()));
+    model.textures.push_back(MeshTexture{decoded.value().width, decoded.value().height,
+                                         std::move(decoded.value().pixels)});
     state.textureByKey[key] = int(model.textures.size()) - 1;
     return int(model.textures.size()) - 1;
 }
@@ -373,11 +374,7 @@ Result<int> objTexture(const std::filesystem::path& file, const std::string& whe
     if (!pixels) {
         return Error{where + "map_Kd: " + pixels.error().message};
     }
-    RgbaImage image;
-    image.width = width;
-    image.height = height;
-    image.pixels = std::move(pixels.value());
-    model.textures.push_back(std::move(image));
+    model.textures.push_back(MeshTexture{width, height, std::move(pixels.value())});
     state.textureByKey[key] = int(model.textures.size()) - 1;
     return int(model.textures.size()) - 1;
 }

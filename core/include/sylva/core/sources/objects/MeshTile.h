@@ -13,7 +13,6 @@
 
 #include <glm/glm.hpp>
 
-#include "sylva/core/image/Image.h"
 #include "sylva/core/tiles/TileKey.h"
 
 namespace sylva {
@@ -51,6 +50,15 @@ struct SimplifiedGeometry {
     double errorMetres = 0.0;
 };
 
+// A base colour texture: sRGB8-encoded RGBA (alpha linear), rows top to bottom (glTF's v = 0
+// is the first row), width * height * 4 bytes. (Not sylva::Image: this header is included
+// where `using namespace render` would make that name ambiguous with render::Image.)
+struct MeshTexture {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> pixels;
+};
+
 struct ModelPart {
     std::string name;
     int parent = -1;  // index into MeshModel::parts (always smaller than this part's)
@@ -68,7 +76,7 @@ struct MeshModel {
     // A node whose primitives use several textures is split on import: the triangles of
     // its first texture stay in the part, the others become child parts named
     // "<node>#<k>" with the identity transform (they follow the node's articulation).
-    std::vector<RgbaImage> textures;
+    std::vector<MeshTexture> textures;
     glm::dvec3 boundsCenter{0.0};  // model frame, unarticulated
     double boundsRadius = 0.0;     // sphere holding every articulation (metres)
     std::size_t triangleCount() const;
