@@ -28,6 +28,28 @@ namespace {
 
 constexpr GLuint kInstanceBinding = 1;
 constexpr std::size_t kFloatsPerInstance = 12;  // three rows of a 3×4 matrix
+constexpr GLuint kUvAttribute = 6;              // after the instance rows (3–5)
+
+// A base colour texture: sRGB8 with alpha, so sampling returns linear colour; every mip
+// level (glGenerateTextureMipmap), repeating, trilinear with 8× anisotropy where offered.
+GlTexture uploadTexture(const MeshTexture& image) {
+    GlTexture texture = createGlTexture(GL_TEXTURE_2D);
+    const GLuint id = texture.get();
+    const int levels = 1 + int(std::floor(std::log2(double(std::max(image.width, image.height)))));
+    glTextureStorage2D(id, levels, GL_SRGB8_ALPHA8, image.width, image.height);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(id, 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                        image.pixels.data());
+    glGenerateTextureMipmap(id);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    if (GLAD_GL_ARB_texture_filter_anisotropic || GLAD_GL_EXT_texture_filter_anisotropic) {
+        glTextureParameterf(id, GL_TEXTURE_MAX_ANISOTROPY, 8.0f);
+    }
+    return texture;
+}
 
 std::unique_ptr<MeshGpuGeometry> upload(const MeshGeometry& geometry) {
     auto gpu = std::make_unique<MeshGpuGeometry>();
@@ -50,7 +72,9 @@ std::unique_ptr<MeshGpuGeometry> upload(const MeshGeometry& geometry) {
     glVertexArrayAttribFormat(va, 1, 3, GL_FLOAT, GL_FALSE, offsetof(MeshVertex, normal));
     glEnableVertexArrayAttrib(va, 2);
     glVertexArrayAttribFormat(va, 2, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(MeshVertex, color));
-    for (GLuint a = 0; a < 3; ++a) {
+    glEnableVertexArrayAttrib(va, kUvAttribute);
+    glVertexArrayAttribFormat(va, kUvAttribute, 2, GL_FLOAT, GL_FALSE, offsetof(MeshVertex, uv));
+    for (GLuint a : {0u, 1u, 2u, kUvAttribute}) {
         glVertexArrayAttribBinding(va, a, 0);
     }
     for (GLuint row = 0; row < 3; ++row) {
@@ -195,7 +219,7 @@ Status MeshRenderer::update(const std::vector<const MeshSource*>& sources, TileP
     return Status::success();
 }
 
-const std::vector<std::vector<std::unique_ptr<MeshGpuGeometry>>>& MeshRenderer::modelParts(
+const MeshRenderer::ModelEntry& MeshRenderer::modelEntry(
     const std::shared_ptr<const MeshModel>& model) {
     auto found = models_.find(model.get());
     if (found == models_.end()) {
@@ -208,9 +232,12 @@ const std::vector<std::vector<std::unique_ptr<MeshGpuGeometry>>>& MeshRenderer::
                 levels.push_back(level.geometry.empty() ? nullptr : upload(level.geometry));
             entry.parts.push_back(std::move(levels));
         }
+        for (const MeshTexture& image : model->textures) {
+            entry.textures.push_back(uploadTexture(image));
+        }
         found = models_.emplace(model.get(), std::move(entry)).first;
     }
-    return found->second.parts;
+    return found->second;
 }
 
 namespace {
@@ -228,10 +255,12 @@ std::size_t levelFor(const ModelPart& part, double scale, double metresPerPixel)
 
 }  // namespace
 
-void MeshRenderer::drawModel(const ResidentTile& resident, const MeshDrawView& view) {
+void MeshRenderer::drawModel(const ResidentTile& resident, const MeshDrawView& view,
+                             bool depthOnly) {
     const MeshTile& tile = *resident.tile;
     const MeshModel& model = *tile.model;
-    const auto& parts = modelParts(tile.model);
+    const ModelEntry& entry = modelEntry(tile.model);
+    const auto& parts = entry.parts;
     struct Visible {
         const ModelPlacement* placement;
         double scale, metresPerPixel;
@@ -290,6 +319,13 @@ void MeshRenderer::drawModel(const ResidentTile& resident, const MeshDrawView& v
         if (geometry == nullptr) {
             continue;
         }
+        if (!depthOnly) {
+            const int texture = model.parts[group.part].texture;
+            meshProgram_.setInt("uTextured", texture >= 0 ? 1 : 0);
+            if (texture >= 0) {
+                glBindTextureUnit(0, entry.textures[std::size_t(texture)].get());
+            }
+        }
         const GLuint va = geometry->vertexArray.get();
         glVertexArrayVertexBuffer(va, kInstanceBinding, instanceBuffer_.get(),
                                   GLintptr(group.first * kFloatsPerInstance * sizeof(float)),
@@ -329,6 +365,10 @@ void MeshRenderer::drawWithDepthTest(const MeshDrawView& view, bool depthOnly,
     ShaderProgram& program = depthOnly ? depthProgram_ : meshProgram_;
     program.use();
     program.setMat4("uProjection", glm::mat4(view.projection));
+    if (!depthOnly) {
+        meshProgram_.setInt("uBaseColor", 0);
+        meshProgram_.setInt("uTextured", 0);  // buildings: vertex colours only
+    }
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(depthFunction);
     glDepthMask(GL_TRUE);
@@ -367,7 +407,7 @@ void MeshRenderer::drawWithDepthTest(const MeshDrawView& view, bool depthOnly,
             sphereVisible(view.projection,
                           view.rotation * (resident->tile->boundsCenter - view.eye),
                           resident->tile->boundsRadius)) {
-            drawModel(*resident, view);
+            drawModel(*resident, view, depthOnly);
         }
     }
     glBindVertexArray(0);

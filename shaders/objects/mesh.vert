@@ -8,12 +8,14 @@ layout(location = 2) in vec4 aColor;  // sRGB8, normalised
 layout(location = 3) in vec4 aRow0;   // rows of the 3×4 model → view transform
 layout(location = 4) in vec4 aRow1;
 layout(location = 5) in vec4 aRow2;
+layout(location = 6) in vec2 aUv;     // base colour texture coordinates (glTF: v down)
 
 uniform mat4 uProjection;
 
 layout(location = 0) out vec3 vNormal;
 layout(location = 1) out vec3 vColor;
 layout(location = 2) out vec3 vView;
+layout(location = 3) out vec2 vUv;
 
 vec3 srgbToLinear(vec3 c) {
     return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), c));
@@ -26,5 +28,6 @@ void main() {
     vNormal = linear * aNormal;  // uniform scale: no inverse transpose needed
     vColor = srgbToLinear(aColor.rgb);
     vView = view;
+    vUv = aUv;
     gl_Position = uProjection * vec4(view, 1.0);
 }

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "sylva/core/geo/Ellipsoid.h"
+#include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/plantlod/PlantGenerator.h"
 #include "sylva/core/plantlod/PlantLodBuilder.h"
 #include "sylva/core/scheduler/TileEvaluator.h"
@@ -310,6 +311,151 @@ TEST_F(ObjectsRender, BuildingHidesTheTreesBehindIt) {
     EXPECT_GT(visible, 200) << "the tree alone must show";
     EXPECT_EQ(treePixels(render({&buildings}, camera, {&batch})), 0)
         << "the building must hide the tree";
+}
+
+// The 4×4 blocks of the textured-quad test's texture: four colours in an arrangement that no
+// flip, transpose or rotation keeps, so a wrong u or v orientation fails.
+const std::uint8_t kQuadColors[4][3] = {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}, {255, 255, 0}};
+int quadTexel(int column, int row) {
+    return (column * 3 + row * 5 + column * row) % 4;
+}
+
+// A 40 m square facing up, textured with the 4×4 texture: glTF (external .bin and .png) or
+// OBJ (+ MTL map_Kd). In the model frame (east, north) = (−x, z) of glTF, and the texture
+// coordinates are u = (20 − east) / 40, v = (north + 20) / 40 in both files (OBJ stores
+// 1 − v), so block (⌊4u⌋, ⌊4v⌋) lies under every point of the square.
+std::filesystem::path writeTexturedQuad(const std::string& format) {
+    const auto folder = std::filesystem::temp_directory_path() /
+                        ("sylva-objects-" + std::to_string(::getpid())) / ("quad-" + format);
+    std::filesystem::create_directories(folder);
+    std::vector<std::uint8_t> pixels;
+    // 64 × 64 texels in 4 × 4 blocks of one colour: bilinear filtering blends colours only
+    // within half a texel (1/32 of a block) of a block border.
+    for (int row = 0; row < 64; ++row) {
+        for (int column = 0; column < 64; ++column) {
+            const std::uint8_t* c = kQuadColors[quadTexel(column / 16, row / 16)];
+            pixels.insert(pixels.end(), {c[0], c[1], c[2], 255});
+        }
+    }
+    EXPECT_TRUE(ImageWriter::writeRgba8(folder / "quad.png", 64, 64, pixels));
+    // Corners (east, north): (20, −20), (20, 20), (−20, 20), (−20, −20), counter-clockwise
+    // from above.
+    const float east[4] = {20, 20, -20, -20}, north[4] = {-20, 20, 20, -20};
+    if (format == "obj") {
+        std::ofstream(folder / "quad.mtl") << "newmtl checker\nKd 1 1 1\nmap_Kd quad.png\n";
+        std::ofstream obj(folder / "quad.obj");
+        obj << "mtllib quad.mtl\no quad\nusemtl checker\n";
+        for (int i = 0; i < 4; ++i) {
+            obj << "v " << east[i] << " " << north[i] << " 0\n";
+        }
+        for (int i = 0; i < 4; ++i) {
+            obj << "vt " << (20 - east[i]) / 40 << " " << 1 - (north[i] + 20) / 40 << "\n";
+        }
+        obj << "vn 0 0 1\nf 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n";
+        return folder / "quad.obj";
+    }
+    std::vector<float> data;  // positions (glTF x = −east, y = 0, z = north), normals, uvs
+    for (int i = 0; i < 4; ++i) {
+        data.insert(data.end(), {-east[i], 0.0f, north[i]});
+    }
+    for (int i = 0; i < 4; ++i) {
+        data.insert(data.end(), {0.0f, 1.0f, 0.0f});
+    }
+    for (int i = 0; i < 4; ++i) {
+        data.insert(data.end(), {(20 - east[i]) / 40, (north[i] + 20) / 40});
+    }
+    const std::uint16_t indices[6] = {0, 1, 2, 0, 2, 3};
+    std::ofstream bin(folder / "quad.bin", std::ios::binary);
+    bin.write(reinterpret_cast<const char*>(data.data()), std::streamsize(data.size() * 4));
+    bin.write(reinterpret_cast<const char*>(indices), sizeof indices);
+    bin.close();
+    std::ofstream(folder / "quad.gltf")
+        << R"({"asset":{"version":"2.0"},"scene":0,)"
+        << R"("scenes":[{"nodes":[0]}],"nodes":[{"name":"quad","mesh":0}],)"
+        << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":1,"TEXCOORD_0":2},)"
+        << R"("indices":3,"material":0}]}],)"
+        << R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],)"
+        << R"("textures":[{"source":0}],"images":[{"uri":"quad.png"}],)"
+        << R"("buffers":[{"uri":"quad.bin","byteLength":140}],"bufferViews":[)"
+        << R"({"buffer":0,"byteOffset":0,"byteLength":48},)"
+        << R"({"buffer":0,"byteOffset":48,"byteLength":48},)"
+        << R"({"buffer":0,"byteOffset":96,"byteLength":32},)"
+        << R"({"buffer":0,"byteOffset":128,"byteLength":12}],"accessors":[)"
+        << R"({"bufferView":0,"componentType":5126,"count":4,"type":"VEC3",)"
+        << R"("min":[-20,0,-20],"max":[20,0,20]},)"
+        << R"({"bufferView":1,"componentType":5126,"count":4,"type":"VEC3"},)"
+        << R"({"bufferView":2,"componentType":5126,"count":4,"type":"VEC2"},)"
+        << R"({"bufferView":3,"componentType":5123,"count":6,"type":"SCALAR"}]})";
+    return folder / "quad.gltf";
+}
+
+// The CPU oracle: every pixel whose depth-buffer point lies on the square (1 m above the
+// ground) away from texel borders must show the colour of the texel under it, told apart
+// by chromaticity (the light scales the channels alike; sun overhead, no atmosphere).
+TEST_F(ObjectsRender, TexturedQuadFromAboveShowsTheTexture) {
+    for (const std::string format : {"gltf", "obj"}) {
+        SCOPED_TRACE(format);
+        const auto sites =
+            writeGeoJson("quad.geojson", R"({"type":"Feature","id":1,"properties":{},"geometry":)"
+                                         R"({"type":"Point","coordinates":[)" +
+                                             std::to_string(kLongitude) + "," +
+                                             std::to_string(kLatitude) + "]}}");
+        FeatureSource features("sites", sites, {});
+        ObjectsParameters p;
+        p.model = writeTexturedQuad(format);
+        p.height = 1.0;
+        const ObjectsSource quad("quad", &features, &ground_, p);
+        const Camera camera = downwards(0, 0, kGround + 120.0, 25 * kDegree);
+        const std::vector<float> depth = render({&quad}, camera);
+        ASSERT_EQ(depth.size(), std::size_t(kSize) * kSize);
+        int checked = 0, wrong = 0;
+        int seen[4] = {0, 0, 0, 0};
+        for (int y = 0; y < kSize; y += 2) {
+            for (int x = 0; x < kSize; x += 2) {
+                if (std::abs(heightAt(camera, depth, x, y) - (kGround + 1.0)) > 0.05) {
+                    continue;  // the ground around the square
+                }
+                const float d = depth[std::size_t(y) * kSize + std::size_t(x)];
+                const double tangent = std::tan(camera.verticalFov / 2);
+                const glm::dvec3 view(((x + 0.5) / kSize * 2 - 1) * tangent,
+                                      (1 - (y + 0.5) / kSize * 2) * tangent, -1.0);
+                const Geodetic g = Ellipsoid::toGeodetic(
+                    camera.position + camera.axes * (view * (renderer_->near() / double(d))));
+                const double east = (g.longitude / kDegree - kLongitude) * metresEast();
+                const double north = (g.latitude / kDegree - kLatitude) * metresNorth();
+                const double u = (20 - east) / 40 * 4, v = (north + 20) / 40 * 4;
+                if (std::abs(u - std::round(u)) < 0.2 || std::abs(v - std::round(v)) < 0.2) {
+                    continue;  // near a texel border: filtered between two colours
+                }
+                const int expected = quadTexel(int(u), int(v));
+                const std::uint8_t* pixel =
+                    lastImage_.pixels.data() + (std::size_t(y) * kSize + std::size_t(x)) * 4;
+                int best = 0;
+                double bestDistance = 1e9;
+                const double sum = double(pixel[0]) + pixel[1] + pixel[2] + 1e-9;
+                for (int c = 0; c < 4; ++c) {
+                    const std::uint8_t* k = kQuadColors[c];
+                    const double ksum = double(k[0]) + k[1] + k[2];
+                    double distance = 0;
+                    for (int i = 0; i < 3; ++i) {
+                        distance += std::pow(pixel[i] / sum - k[i] / ksum, 2);
+                    }
+                    if (distance < bestDistance) {
+                        bestDistance = distance;
+                        best = c;
+                    }
+                }
+                ++checked;
+                ++seen[expected];
+                wrong += best != expected;
+            }
+        }
+        EXPECT_GT(checked, 2000);
+        for (int c = 0; c < 4; ++c) {
+            EXPECT_GT(seen[c], 100) << "colour " << c;
+        }
+        EXPECT_LE(wrong, checked / 200) << wrong << " of " << checked << " pixels";
+    }
 }
 
 }  // namespace

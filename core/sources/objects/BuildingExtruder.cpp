@@ -1,5 +1,7 @@
 #include "BuildingExtruder.h"
 
+#include "sylva/core/sources/objects/HipRoof.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -35,6 +37,9 @@ struct BuildingExtruder::Writer {
         return Ellipsoid::toEcef(Geodetic{lonLat.y, lonLat.x, local.z}) - origin;
     }
     void polygon(std::initializer_list<glm::dvec3> corners, std::uint32_t color) {
+        polygon(std::vector<glm::dvec3>(corners), color);
+    }
+    void polygon(const std::vector<glm::dvec3>& corners, std::uint32_t color) {
         std::vector<glm::dvec3> points;
         for (const glm::dvec3& corner : corners) {
             points.push_back(ecef(corner));
@@ -50,7 +55,8 @@ struct BuildingExtruder::Writer {
         normal /= length;
         const auto first = static_cast<std::uint32_t>(out.vertices.size());
         for (const glm::dvec3& p : points) {
-            out.vertices.push_back(MeshVertex{glm::vec3(p), glm::vec3(normal), color});
+            out.vertices.push_back(
+                MeshVertex{glm::vec3(p), glm::vec3(normal), color, glm::vec2(0.0f)});
         }
         for (std::uint32_t i = 1; i + 1 < points.size(); ++i) {
             out.indices.insert(out.indices.end(), {first, first + i, first + i + 1});
@@ -106,6 +112,9 @@ RoofKind BuildingExtruder::effectiveRoof(const BuildingShape& shape) {
         convex(outer)) {
         return shape.roof;
     }
+    if (shape.roof == RoofKind::Hip && convex(outer)) {
+        return RoofKind::Hip;  // any convex footprint: the straight skeleton's roof (HipRoof)
+    }
     return convex(outer) ? RoofKind::Pyramid : RoofKind::Flat;
 }
 
@@ -141,6 +150,12 @@ Status BuildingExtruder::append(const BuildingShape& shape, const LocalPlane& pl
     }
     const Ring& p = shape.rings.front();
     const double rise = std::tan(shape.pitch);
+    if (roof == RoofKind::Hip && p.size() != 4) {
+        for (const HipRoofFace& face : hipRoof(p, shape.eaves, shape.pitch)) {
+            writer.polygon(face.corners, shape.roofColor);
+        }
+        return Status::success();
+    }
     if (roof == RoofKind::Pyramid) {
         const glm::dvec2 apex = centroid(p);
         double reach = std::numeric_limits<double>::infinity();

@@ -49,8 +49,9 @@ public:
     Status append(const BuildingShape& shape, const LocalPlane& plane, const glm::dvec3& origin,
                   MeshGeometry& out);
 
-    // The roof actually built for a shape: gable and hip need four corners and no holes,
-    // a pyramid a convex outer ring without holes; otherwise the next simpler roof.
+    // The roof actually built for a shape: gable needs four corners and no holes, hip and
+    // pyramid a convex outer ring without holes (hip on other than four corners: the
+    // straight skeleton's roof, HipRoof); otherwise the next simpler roof.
     static RoofKind effectiveRoof(const BuildingShape& shape);
 
 private:

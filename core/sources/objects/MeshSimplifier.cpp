@@ -24,31 +24,43 @@ struct Traits : OpenMesh::DefaultTraits {
 };
 using Mesh = OpenMesh::TriMesh_ArrayKernelT<Traits>;
 
-// The geometry welded by position into an OpenMesh mesh; each vertex keeps the colour of
-// the first original vertex at its position (a property).
+// The geometry welded by position and texture coordinates into an OpenMesh mesh; each
+// vertex keeps the colour of the first original vertex there and its texture coordinates
+// (properties). Where a texture seam runs (one position, several texture coordinates) the
+// two sides are separate vertices: both are locked, so the decimater never moves or
+// removes them and the seam stays closed in every level.
 struct Welded {
     Mesh mesh;
     OpenMesh::VPropHandleT<std::uint32_t> color;
+    OpenMesh::VPropHandleT<glm::vec2> uv;
     std::vector<glm::dvec3> points;  // the welded positions, for the error
 };
 
 void weld(const MeshGeometry& geometry, Welded& out) {
     out.mesh.add_property(out.color);
-    std::map<std::tuple<float, float, float>, Mesh::VertexHandle> byPosition;
+    out.mesh.add_property(out.uv);
+    using Key = std::tuple<float, float, float, float, float>;
+    std::map<Key, Mesh::VertexHandle> byCorner;
+    std::map<std::tuple<float, float, float>, int> cornersAt;  // distinct uvs per position
     std::vector<Mesh::VertexHandle> handles(geometry.vertices.size());
     for (std::size_t i = 0; i < geometry.vertices.size(); ++i) {
         const MeshVertex& v = geometry.vertices[i];
-        const auto key = std::make_tuple(v.position.x, v.position.y, v.position.z);
-        auto found = byPosition.find(key);
-        if (found == byPosition.end()) {
+        const Key key{v.position.x, v.position.y, v.position.z, v.uv.x, v.uv.y};
+        auto found = byCorner.find(key);
+        if (found == byCorner.end()) {
             const Mesh::VertexHandle h =
                 out.mesh.add_vertex(Mesh::Point(v.position.x, v.position.y, v.position.z));
             out.mesh.property(out.color, h) = v.color;
+            out.mesh.property(out.uv, h) = v.uv;
             out.points.emplace_back(v.position);
-            found = byPosition.emplace(key, h).first;
+            found = byCorner.emplace(key, h).first;
+            ++cornersAt[{v.position.x, v.position.y, v.position.z}];
         }
         handles[i] = found->second;
     }
+    for (const auto& [key, handle] : byCorner)
+        if (cornersAt[{std::get<0>(key), std::get<1>(key), std::get<2>(key)}] > 1)
+            out.mesh.status(handle).set_locked(true);  // a texture seam
     for (std::size_t t = 0; t + 2 < geometry.indices.size(); t += 3) {
         const Mesh::VertexHandle a = handles[geometry.indices[t]],
                                  b = handles[geometry.indices[t + 1]],
@@ -121,6 +133,7 @@ MeshGeometry toGeometry(Welded& welded) {
                                                  float(n[2] / length))
                                      : glm::vec3(0.0f, 0.0f, 1.0f);
         vertex.color = mesh.property(welded.color, v);
+        vertex.uv = mesh.property(welded.uv, v);
         out.vertices.push_back(vertex);
     }
     for (const Mesh::FaceHandle f : mesh.faces())

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "sylva/core/geo/Ellipsoid.h"
+#include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/core/sources/objects/ObjectsSource.h"
 #include "sylva/core/sources/raster/ConstantSource.h"
@@ -90,6 +91,42 @@ TEST(ModelImporter, ObjGroupsBecomePartsWithMaterialColours) {
     EXPECT_EQ(model.value()->triangleCount(), 3u);
     EXPECT_EQ(model.value()->parts[0].geometry.vertices[0].color & 0xffffffu, 0x0000ffu);
     EXPECT_NEAR(model.value()->parts[0].geometry.vertices[0].normal.z, 1.0f, 1e-6f);
+}
+
+// OBJ textures: map_Kd images decoded once each, `vt` flipped to the glTF convention (v
+// down), and a group using two textured materials split into the group and a child part.
+TEST(ModelImporter, ObjTexturesAreReadAndSplitPerPart) {
+    const std::vector<std::uint8_t> red = {200, 10, 20, 255, 1, 2, 3, 255};  // 2 × 1
+    ASSERT_TRUE(ImageWriter::writeRgba8(folder() / "red.png", 2, 1, red));
+    const std::vector<std::uint8_t> blue = {5, 6, 250, 255};  // 1 × 1
+    ASSERT_TRUE(ImageWriter::writeRgba8(folder() / "blue.png", 1, 1, blue));
+    write("tex.mtl", "newmtl a\nKd 1 1 1\nmap_Kd red.png\nnewmtl b\nmap_Kd -s 1 1 1 blue.png\n");
+    const auto obj = write("tex.obj",
+                           "mtllib tex.mtl\no sign\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0.25 0.75\n"
+                           "vt 1 0\nusemtl a\nf 1/1 2/2 3/1\nusemtl b\nf 1/2 3/1 2/2\n"
+                           "usemtl a\nf 3/1 2/1 1/1\n");
+    Result<std::shared_ptr<const MeshModel>> model = importModel(obj);
+    ASSERT_TRUE(model) << model.error().message;
+    const MeshModel& m = *model.value();
+    ASSERT_EQ(m.textures.size(), 2u);
+    EXPECT_EQ(m.textures[0].width, 2);
+    EXPECT_EQ(m.textures[0].pixels, red);
+    EXPECT_EQ(m.textures[1].pixels, blue);
+    ASSERT_EQ(m.parts.size(), 2u);
+    EXPECT_EQ(m.parts[0].name, "sign");
+    EXPECT_EQ(m.parts[0].texture, 0);
+    EXPECT_EQ(m.parts[0].geometry.indices.size(), 6u);
+    EXPECT_EQ(m.parts[1].name, "sign#1");
+    EXPECT_EQ(m.parts[1].parent, 0);
+    EXPECT_EQ(m.parts[1].texture, 1);
+    EXPECT_EQ(m.parts[1].geometry.indices.size(), 3u);
+    EXPECT_EQ(m.parts[0].geometry.vertices[0].uv, glm::vec2(0.25f, 0.25f));
+    EXPECT_EQ(m.parts[0].geometry.vertices[1].uv, glm::vec2(1.0f, 1.0f));
+    // A texture that cannot be read names the MTL line.
+    write("broken.mtl", "newmtl a\nmap_Kd absent.png\n");
+    const auto broken = write("broken.obj", "mtllib broken.mtl\nv 0 0 0\n");
+    EXPECT_EQ(errorOf(broken).rfind((folder() / "broken.mtl").string() + ":2: map_Kd: ", 0), 0u)
+        << errorOf(broken);
 }
 
 TEST(ModelImporter, BadFilesAreLocatedErrors) {

@@ -17,6 +17,9 @@
 // distance. Culling: tiles and placements by bounding sphere against the frustum, and
 // placements smaller than MeshSettings::minimumPixels.
 //
+// Textures: a part with a base colour texture (ModelPart::texture) is drawn with it bound
+// (unit 0, mipmapped: the texture's colour times the vertex colour); buildings have none.
+//
 // Depth-only reuse (shadow maps): draw() takes any MeshDrawView (an orthographic light
 // view as well as the camera) and a depth-only flag, which draws positions only, with no
 // colour outputs, into whatever framebuffer is bound.
@@ -90,9 +93,10 @@ public:
 private:
     struct ResidentTile;
     MeshRenderer() = default;
-    const std::vector<std::vector<std::unique_ptr<MeshGpuGeometry>>>& modelParts(
-        const std::shared_ptr<const MeshModel>& model);
-    void drawModel(const ResidentTile& tile, const MeshDrawView& view);
+    struct ModelEntry;
+    // The model's GPU geometry and textures, uploaded on first use.
+    const ModelEntry& modelEntry(const std::shared_ptr<const MeshModel>& model);
+    void drawModel(const ResidentTile& tile, const MeshDrawView& view, bool depthOnly);
     // draw() with `depthFunction` (GL_GREATER for the reversed-Z camera, GL_LESS for shadows).
     void drawWithDepthTest(const MeshDrawView& view, bool depthOnly, unsigned depthFunction);
 
@@ -107,6 +111,9 @@ private:
         std::shared_ptr<const MeshModel> model;
         // Per part: the full geometry, then its simplified levels (ModelPart::levels).
         std::vector<std::vector<std::unique_ptr<MeshGpuGeometry>>> parts;
+        // MeshModel::textures as sRGB8_ALPHA8 textures with full mipmap chains (repeat,
+        // trilinear), sampled by objects/mesh.frag.
+        std::vector<GlTexture> textures;
     };
     std::map<const MeshModel*, ModelEntry> models_;
     MeshStatistics statistics_;

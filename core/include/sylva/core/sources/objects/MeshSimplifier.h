@@ -9,7 +9,10 @@
 //
 // Shading of a level: vertex normals are recomputed from the simplified faces (area
 // weighted), so hard edges of the original soften — acceptable at the sizes a level is
-// drawn at; colours are the surviving vertices' own (a collapse keeps one endpoint).
+// drawn at; colours and texture coordinates are the surviving vertices' own (a collapse
+// keeps one endpoint; OpenMesh vertex properties). Vertices are welded by position and
+// texture coordinates, so a texture seam (one position, two uvs) splits the mesh; the
+// vertices along it are locked, so every level keeps the seam where the original has it.
 // Faces OpenMesh cannot add (non-manifold edges after welding) are left out of the
 // levels; the full-detail geometry keeps them.
 //

@@ -19,13 +19,16 @@ namespace sylva {
 
 // One vertex: position (metres, frame of its owner: tile ECEF offsets for buildings, the
 // model frame for model parts), unit normal in the same frame, colour as packed sRGB8
-// RGBA (r in the lowest byte; alpha unused, 255).
+// RGBA (r in the lowest byte; alpha unused, 255), texture coordinates of its part's
+// texture (glTF convention: u right, v down from the image's first row; repeating; unused
+// without a texture). The colour multiplies the texture (glTF's baseColorFactor).
 struct MeshVertex {
     glm::vec3 position{0.0f};
     glm::vec3 normal{0.0f, 0.0f, 1.0f};
     std::uint32_t color = 0xffffffffu;
+    glm::vec2 uv{0.0f};
 };
-static_assert(sizeof(MeshVertex) == 28);
+static_assert(sizeof(MeshVertex) == 36);
 
 // Indexed triangles, counter-clockwise seen from outside.
 struct MeshGeometry {
@@ -47,6 +50,15 @@ struct SimplifiedGeometry {
     double errorMetres = 0.0;
 };
 
+// A base colour texture: sRGB8-encoded RGBA (alpha linear), rows top to bottom (glTF's v = 0
+// is the first row), width * height * 4 bytes. (Not sylva::Image: this header is included
+// where `using namespace render` would make that name ambiguous with render::Image.)
+struct MeshTexture {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> pixels;
+};
+
 struct ModelPart {
     std::string name;
     int parent = -1;  // index into MeshModel::parts (always smaller than this part's)
@@ -54,11 +66,17 @@ struct ModelPart {
     glm::dvec3 axis{0.0, 0.0, 1.0};  // unit, in the part's frame
     MeshGeometry geometry;
     std::vector<SimplifiedGeometry> levels;  // ever coarser, ever larger error; may be empty
+    int texture = -1;  // index into MeshModel::textures of the base colour texture, -1: none
 };
 
 struct MeshModel {
     std::string file;              // as given, for messages
     std::vector<ModelPart> parts;  // parents before children
+    // Base colour textures (sRGB8 RGBA, rows top to bottom), shared by the parts naming them.
+    // A node whose primitives use several textures is split on import: the triangles of
+    // its first texture stay in the part, the others become child parts named
+    // "<node>#<k>" with the identity transform (they follow the node's articulation).
+    std::vector<MeshTexture> textures;
     glm::dvec3 boundsCenter{0.0};  // model frame, unarticulated
     double boundsRadius = 0.0;     // sphere holding every articulation (metres)
     std::size_t triangleCount() const;

@@ -1,6 +1,6 @@
 // ModelImporter: a 3D model for the `objects` source — glTF 2.0 (.gltf with its buffers,
-// .glb; read by tinygltf) or Wavefront OBJ (own reader: v, vn, f, o/g, usemtl with the
-// Kd colours of its mtllib) — as a MeshModel of named parts.
+// .glb; read by tinygltf) or Wavefront OBJ (own reader: v, vt, vn, f, o/g, usemtl with
+// the Kd colours and map_Kd textures of its mtllib) — as a MeshModel of named parts.
 //
 // glTF: every node of the default scene (else every root) becomes a part with its name,
 // parent and local transform (matrix or TRS); its mesh's TRIANGLES primitives give the
@@ -10,7 +10,8 @@
 // Missing normals are computed per face.
 //
 // Fails with "<file>: <reason>": the file is missing, has an unknown extension, is
-// truncated or malformed (tinygltf's or the OBJ line's message), or has no triangles.
+// truncated or malformed (tinygltf's or the OBJ line's message), has no triangles, or a
+// texture cannot be read or lacks its texture coordinates.
 #pragma once
 
 #include <filesystem>
