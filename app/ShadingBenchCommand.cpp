@@ -2,10 +2,10 @@
 // [--leaves N] [--gl B]`: the shading suite of issue 16, one part after the other in one GL
 // context: anti-aliasing (bench/AntiAliasingBenchmark.h: aa4_frame_ratio), the atmosphere
 // (bench/AtmosphereBenchmark.h: atmosphere_ms_median, atmosphere_speedup) and sun shadows
-// on the terrain flight and the vegetation forest (bench/ShadingBenchmark.h:
-// shadow_frame_ratio). `--only` takes a comma-separated subset of
-// antialiasing,atmosphere,shadows. Prints {"suite":"shading","metrics":{...}} with --json,
-// else one "shading.KEY = VALUE" line each.
+// on the terrain flight and the vegetation forest, with screen-space ambient occlusion on
+// the same frames (bench/ShadingBenchmark.h: shadow_frame_ratio, ssao_frame_ratio). `--only` takes
+// a comma-separated subset of antialiasing,atmosphere,shadows. Prints
+// {"suite":"shading","metrics":{...}} with --json, else one "shading.KEY = VALUE" line each.
 #include <cstdio>
 #include <set>
 #include <sstream>

@@ -27,27 +27,39 @@ double median(std::vector<double> values) {
     return values[values.size() / 2];
 }
 
-// Frame times of one scene with and without shadows, milliseconds.
+// Frame times of one scene, milliseconds: with and without shadows (both without SSAO),
+// and with shadows and SSAO.
 struct ShadowSamples {
-    std::vector<double> with, without, shadowPass;
+    std::vector<double> with, without, shadowPass, withOcclusion, occlusionPass;
 };
 
-// One camera: a warm-up render (tiles, plants), then with and without shadows.
+// One camera: a warm-up render (tiles, plants), then with and without shadows, then with
+// shadows and screen-space ambient occlusion.
 Status measureFrame(SceneRenderer& renderer, const TerrainLayers& layers, TileProvider& provider,
                     const Camera& camera, RenderSettings settings, ShadowSamples& samples) {
     settings.shadows.enabled = true;
     if (Result<Image> warm = renderer.render(layers, provider, camera, settings); !warm) {
         return warm.error();
     }
-    for (const bool shadows : {true, false}) {
-        settings.shadows.enabled = shadows;
+    struct Variant {
+        bool shadows, occlusion;
+        std::vector<double>* frames;
+    };
+    for (const Variant& variant :
+         {Variant{true, false, &samples.with}, Variant{false, false, &samples.without},
+          Variant{true, true, &samples.withOcclusion}}) {
+        settings.shadows.enabled = variant.shadows;
+        settings.ambientOcclusion.enabled = variant.occlusion;
         if (Result<Image> image = renderer.render(layers, provider, camera, settings); !image) {
             return image.error();
         }
         const RenderStatistics& statistics = renderer.statistics();
-        (shadows ? samples.with : samples.without).push_back(statistics.gpuSeconds * 1000.0);
-        if (shadows) {
+        variant.frames->push_back(statistics.gpuSeconds * 1000.0);
+        if (variant.shadows && !variant.occlusion) {
             samples.shadowPass.push_back(statistics.shadowPassSeconds * 1000.0);
+        }
+        if (variant.occlusion) {
+            samples.occlusionPass.push_back(statistics.ambientOcclusionPassSeconds * 1000.0);
         }
     }
     return {};
@@ -141,6 +153,15 @@ Status measureShadows(const ShaderLibrary& library, const ShadingBenchmarkOption
     metrics["shadow_ms_median_forest"] = median(forest.shadowPass);
     metrics["shadow_frames_terrain"] = double(flight.with.size());
     metrics["shadow_frames_forest"] = double(forest.with.size());
+    const double terrainOcclusion =
+        median(flight.withOcclusion) / std::max(median(flight.with), 1e-9);
+    const double forestOcclusion =
+        median(forest.withOcclusion) / std::max(median(forest.with), 1e-9);
+    metrics["ssao_frame_ratio"] = std::max(terrainOcclusion, forestOcclusion);
+    metrics["ssao_frame_ratio_terrain"] = terrainOcclusion;
+    metrics["ssao_frame_ratio_forest"] = forestOcclusion;
+    metrics["ssao_ms_median_terrain"] = median(flight.occlusionPass);
+    metrics["ssao_ms_median_forest"] = median(forest.occlusionPass);
     return {};
 }
 

@@ -5,7 +5,12 @@
 // frame times (SceneRenderer's draw + shadow maps + shade + read-back, without the clipmap
 // update) are compared. Keys: `shadow_frame_ratio` (the larger of the two scenes' ratios
 // of medians, with / without), `shadow_frame_ratio_terrain`, `shadow_frame_ratio_forest`,
-// `shadow_ms_median_terrain`, `shadow_ms_median_forest` (the shadow maps alone).
+// `shadow_ms_median_terrain`, `shadow_ms_median_forest` (the shadow maps alone); both
+// without screen-space ambient occlusion. The same frames are rendered a third time with
+// shadows and SSAO (AmbientOcclusionPass): `ssao_frame_ratio` (the larger of the scenes'
+// ratios of medians, shadows + SSAO / shadows), `ssao_frame_ratio_terrain`,
+// `ssao_frame_ratio_forest`, `ssao_ms_median_terrain`, `ssao_ms_median_forest` (the pass
+// and its blur alone).
 #pragma once
 
 #include <map>

@@ -692,6 +692,18 @@ KindSchema renderBlock() {
                     "View distance covered by the fine shadow cascades (four, split by the "
                     "practical split scheme of 2048 texels each: at 2 km the nearest cascade's "
                     "texels are about 1 cm, the farthest's about 2.5 m)."),
+             simple("ambient_occlusion", ValueType::Bool, boolean(true),
+                    "Screen-space ambient occlusion of the sky light (horizon-based, seed 001 "
+                    "§7.1): creases, the feet of walls and buildings, the ground under trees "
+                    "get less sky; multiplied with the plants' precomputed occlusion; the sun "
+                    "is shadowed by the shadow maps only. Costs one pass over the image."),
+             number("ambient_occlusion_radius", Dimension::Length, 2.0, 0.1, 100.0,
+                    "Radius of the sphere around each point searched for occluders; surfaces "
+                    "farther apart (a ridge in front of far terrain, the sky) never occlude. "
+                    "Seen under 1.5 pixels (far away) it has no effect."),
+             number("ambient_occlusion_strength", Dimension::None, 1.0, 0.0, 1.0,
+                    "Sky light = 1 - strength x the occluded fraction of the hemisphere (1: "
+                    "the physical fraction; 0: no occlusion)."),
              number("exposure", Dimension::None, 1.0, 0.01, 100.0,
                     "Scale applied to the exposed radiance before tone mapping (2 = one "
                     "stop brighter than ev100 or the metered exposure)."),

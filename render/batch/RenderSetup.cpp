@@ -84,6 +84,11 @@ Result<RenderSetup> RenderSetup::fromModel(const ProjectModel& model, int overri
     settings.atmosphereParameters = atmosphere.value();
     settings.shadows.enabled = renderBlock.boolean("shadows", true);
     settings.shadows.distance = renderBlock.optionalNumber("shadow_distance").value_or(2000.0);
+    settings.ambientOcclusion.enabled = renderBlock.boolean("ambient_occlusion", true);
+    settings.ambientOcclusion.radius =
+        renderBlock.optionalNumber("ambient_occlusion_radius").value_or(2.0);
+    settings.ambientOcclusion.strength =
+        renderBlock.optionalNumber("ambient_occlusion_strength").value_or(1.0);
     setup.terrain.maxLevel = static_cast<int>(renderBlock.optionalNumber("max_level").value_or(24));
     setup.cacheMegabytes =
         static_cast<std::size_t>(renderBlock.optionalNumber("cache_mb").value_or(1024));

@@ -44,6 +44,11 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const ShaderLibrary
         return shading.error();
     }
     renderer->shading_ = std::move(shading.value());
+    Result<std::unique_ptr<AmbientOcclusionPass>> occlusion = AmbientOcclusionPass::create(library);
+    if (!occlusion) {
+        return occlusion.error();
+    }
+    renderer->ambientOcclusion_ = std::move(occlusion.value());
     Result<std::unique_ptr<SampleAccumulator>> accumulator = SampleAccumulator::create(library);
     if (!accumulator) {
         return accumulator.error();
@@ -224,6 +229,19 @@ Status SceneRenderer::drawSample(const Camera& camera, const glm::dmat4& project
     shading.atmosphere = settings.atmosphere;
     shading.atmosphereParameters = settings.atmosphereParameters;
     shading.exposure = exposureScale(statistics_.ev100) * settings.exposure;
+    if (settings.ambientOcclusion.enabled) {
+        const auto occlusionStart = std::chrono::steady_clock::now();
+        Result<std::uint32_t> occlusion =
+            ambientOcclusion_->run(gbuffer_, projection, near_, settings.ambientOcclusion);
+        if (!occlusion) {
+            return occlusion.error();
+        }
+        shading.ambientOcclusion = occlusion.value();
+        glFinish();  // only to time the pass
+        statistics_.ambientOcclusionPassSeconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - occlusionStart)
+                .count();
+    }
     shading_->run(gbuffer_, output_, camera, projection, near_, shading);
     return Status::success();
 }
@@ -255,6 +273,7 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     statistics_.vegetation = {};
     statistics_.terrainPassSeconds = 0;
     statistics_.vegetationPassSeconds = 0;
+    statistics_.ambientOcclusionPassSeconds = 0;
     Result<std::vector<const InstanceBatch*>> batches =
         streamVegetation(layers, provider, camera, settings);
     if (!batches) {

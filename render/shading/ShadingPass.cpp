@@ -9,8 +9,9 @@ namespace sylva::render {
 namespace {
 
 // Texture units: 0-2 the G-buffer, 3-8 the atmosphere's tables (AtmosphereLuts::bind),
-// then the shadow maps.
-constexpr int kShadowMapUnit = 9;
+// the screen-space ambient occlusion, then the shadow maps.
+constexpr int kAmbientOcclusionUnit = 9;
+constexpr int kShadowMapUnit = 10;
 
 // ECEF -> the sphere space of the shaders (z scaled by a/b).
 glm::dvec3 toSphereSpace(const glm::dvec3& ecef) {
@@ -82,6 +83,9 @@ void ShadingPass::run(const Framebuffer& gbuffer, const Framebuffer& target, con
     glBindTextureUnit(1, gbuffer.colorTexture(1));
     glBindTextureUnit(2, gbuffer.depthTexture());
     atmosphere_->bind(program_, 3);
+    program_.setInt("uAmbientOcclusion", kAmbientOcclusionUnit);
+    program_.setInt("uHasAmbientOcclusion", settings.ambientOcclusion != 0 ? 1 : 0);
+    glBindTextureUnit(kAmbientOcclusionUnit, settings.ambientOcclusion);
     ShadowMaps::bindUniforms(program_, settings.shadowMaps, kShadowMapUnit);
     glBindVertexArray(emptyVertexArray_.get());
     glDrawArrays(GL_TRIANGLES, 0, 3);

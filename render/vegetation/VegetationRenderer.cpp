@@ -19,6 +19,10 @@ namespace sylva::render {
 
 namespace {
 
+// The plants' level-of-detail error in the shadow maps, in cascade texels: the width of
+// the shadow lookup's PCF box (shaders/shading/shadows.glsl), over which an edge fades.
+constexpr double kShadowErrorTexels = 3.0;
+
 // std430 mirrors of the shader structs (shaders/vegetation/ellipsoid.vert, line.vert).
 struct GpuEllipsoid {
     glm::vec4 centerNoise;
@@ -662,14 +666,18 @@ void VegetationRenderer::drawShadow(const ShadowView& view) {
     const VegetationSettings& settings = shadowSettings_;
     // Orthographic selection in the light frame (camera-relative, rotated by the light
     // rotation): a camera at the viewer's position whose view rotation is the light's, the
-    // cascade's box as four offset side planes, and one texel as the tolerated error.
+    // cascade's box as four offset side planes. The tolerated error is the width the
+    // shadow lookup blurs an edge over (shadows.glsl: a 3 x 3-texel PCF box), not one
+    // texel: finer crown detail is filtered away, and one-texel selection drew the finest
+    // levels and meshes of hundreds of trees into every cascade (docs/benchmarks.md,
+    // shadow_frame_ratio). Plants still cast down to settings.minimumPixels texels.
     Camera light = *view.camera;
     light.axes = glm::transpose(view.lightRotation);
     LodSelectionSettings selection;
-    selection.pixelAngle = cascade.texelSize;
+    selection.pixelAngle = kShadowErrorTexels * cascade.texelSize;
     selection.fixedDistance = 1.0;
     selection.quality = settings.quality;
-    selection.minimumPixels = settings.minimumPixels;
+    selection.minimumPixels = settings.minimumPixels / kShadowErrorTexels;
     selection.transitionBand = settings.transitionBand;
     selection.closeUpMesh = settings.closeUpMesh;
     // Impostors cast the LoD's shadows (an impostor faces the camera, not the sun).

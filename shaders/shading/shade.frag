@@ -22,11 +22,14 @@ uniform vec3 uCameraEcef;       // metres (float precision is plenty for the sky
 uniform vec3 uSunView;          // unit vector towards the sun, view space
 uniform vec3 uSunEcef;
 uniform bool uAtmosphere;
+uniform sampler2D uAmbientOcclusion;  // screen-space (AmbientOcclusionPass), r
+uniform bool uHasAmbientOcclusion;
 uniform float uExposure;  // 1 / (1.2 * 2^EV100) x the project's exposure scale
 
-// Materials of the G-buffer (normal.w, rounded): 0 ground (terrain.frag; plants until
-// they write their own), 1 water (terrain.frag), 2 leaves, 3 built objects
-// (objects/mesh.frag). Schlick roughness r and normal-incidence reflectance f0 of each
+// Materials of the G-buffer (normal.w, rounded): 0 ground (terrain.frag), 1 water
+// (terrain.frag), 2 leaves (every plant shader in shaders/vegetation: ellipsoids, lines,
+// meshes, billboard clouds, impostors, points, the far-field canopy; their branches too),
+// 3 built objects (objects/mesh.frag). Schlick roughness r and normal-incidence reflectance f0 of each
 // non-water material: soil and grass are nearly matte (r 0.8), leaves have a waxy
 // cuticle (r 0.5), paint, tiles and metal sheet of buildings and turbines r 0.6; f0 0.04
 // for a dielectric of refractive index ~1.5 ((n - 1)² / (n + 1)²).
@@ -64,9 +67,15 @@ void main() {
         vec3 sunLight = atmosphereSunIlluminance(surfaceSphere, sun);
         // Cascaded shadow maps (seed 001 §7.1): 0 in the shadow of terrain, plants, objects.
         sunLight *= sunVisibility(directionEcef * distance, normalize(uViewToEcef * normal));
-        // albedo.a: ambient occlusion (1 for terrain; per primitive for plants, §6.5).
+        // albedo.a: ambient occlusion (1 for terrain; per primitive for plants, §6.5),
+        // times the screen-space occlusion (seed 001 §7.1) where it is computed: sky
+        // light only, the sun has its shadow maps.
+        float occlusion = albedo.a;
+        if (uHasAmbientOcclusion) {
+            occlusion *= texelFetch(uAmbientOcclusion, pixel, 0).r;
+        }
         vec3 ambient = atmosphereSkyIrradiance(surfaceSphere, sun) * (0.5 + 0.5 * dot(normal, upView)) *
-                       albedo.a;
+                       occlusion;
         int material = clamp(int(normalMaterial.w + 0.5), 0, 3);
         vec3 surface;
         if (material != 1) {

@@ -87,7 +87,7 @@ void main() {
             normal = -normal;
         }
         outAlbedo = vec4(color.rgb * vTintDither.rgb, 1.0);
-        outNormal = vec4(normal, 0.0);
+        outNormal = vec4(normal, 2.0);  // material 2: leaves (shade.frag)
         return;
     }
     discard;

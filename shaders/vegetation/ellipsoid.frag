@@ -74,5 +74,5 @@ void main() {
         normal = -normal;
     }
     outAlbedo = vColorAo;
-    outNormal = vec4(normal, 0.0);
+    outNormal = vec4(normal, 2.0);  // material 2: leaves (shade.frag)
 }

@@ -35,5 +35,5 @@ void main() {
     vec3 coarseNormal = texture(uNormals, vec3(vDetailCoordinate.zw, float(coarser))).xyz;
     vec3 normal = normalize(uEcefToView * mix(fineNormal, coarseNormal, vBlend));
     outAlbedo = vec4(cover.rgb, uAmbientOcclusion);
-    outNormal = vec4(normal, 0.0);
+    outNormal = vec4(normal, 2.0);  // material 2: leaves (shade.frag)
 }

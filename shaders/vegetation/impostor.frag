@@ -51,5 +51,5 @@ void main() {
         normal = -normal;
     }
     outAlbedo = vec4(albedo.rgb / albedo.a * m.tint.rgb, 1.0);
-    outNormal = vec4(normal, uWriteDistance ? length(p) : 0.0);
+    outNormal = vec4(normal, uWriteDistance ? length(p) : 2.0);  // 2: leaves (shade.frag)
 }

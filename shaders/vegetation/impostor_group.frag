@@ -34,5 +34,5 @@ void main() {
         normal = -normal;
     }
     outAlbedo = vec4(albedo.rgb / albedo.a, 1.0);
-    outNormal = vec4(normal, 0.0);
+    outNormal = vec4(normal, 2.0);  // material 2: leaves (shade.frag)
 }

@@ -35,5 +35,5 @@ void main() {
     gl_FragDepth = uNear / max(-hit.z, uNear);
     normal = normalize(normal);
     outAlbedo = vColorAo;
-    outNormal = vec4(normal, 0.0);
+    outNormal = vec4(normal, 2.0);  // material 2: leaves (shade.frag)
 }

@@ -49,5 +49,5 @@ void main() {
         normal = -normal;
     }
     outAlbedo = vec4(color.rgb * vTintDither.rgb, uAmbientOcclusion);
-    outNormal = vec4(normal, 0.0);
+    outNormal = vec4(normal, 2.0);  // material 2: leaves (shade.frag)
 }

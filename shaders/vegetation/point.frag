@@ -32,5 +32,5 @@ void main() {
     gl_FragDepth = uNear / max(-hit.z, uNear);
     vec3 normal = across > 0.0 ? -vNormal : vNormal;
     outAlbedo = vec4(vColor, 1.0);
-    outNormal = vec4(normal, 0.0);
+    outNormal = vec4(normal, 2.0);  // material 2: leaves (shade.frag)
 }

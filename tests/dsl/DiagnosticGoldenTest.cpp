@@ -395,6 +395,26 @@ scenario a { layers = [@h]; override render { shadow_distance = 5m } }
 )SYLVA");
 }
 
+TEST(DiagnosticGolden, AmbientOcclusionOutOfRange) {
+    EXPECT_EQ(renderOf(R"SYLVA(render { ambient_occlusion_radius = 500m }
+)SYLVA"),
+              R"SYLVA(error[E0404]: value out of range for 'ambient_occlusion_radius'
+ --> test.sylva:1:37
+  |
+1 | render { ambient_occlusion_radius = 500m }
+  |                                     ^^^^ 500m is above the maximum 100m
+)SYLVA");
+    EXPECT_EQ(renderOf(R"SYLVA(source h : noise {}
+scenario a { layers = [@h]; override render { ambient_occlusion_strength = 2 } }
+)SYLVA"),
+              R"SYLVA(error[E0404]: value out of range for 'ambient_occlusion_strength'
+ --> test.sylva:2:76
+  |
+2 | scenario a { layers = [@h]; override render { ambient_occlusion_strength = 2 } }
+  |                                                                            ^ 2 is above the maximum 1
+)SYLVA");
+}
+
 TEST(DiagnosticGolden, MissingRequired) {
     EXPECT_EQ(renderOf(R"SYLVA(camera ground { heading = 20deg }
 )SYLVA"),

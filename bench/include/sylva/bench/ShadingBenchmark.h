@@ -1,7 +1,8 @@
 // ShadingBenchmark: `sylva bench shading`, the costs of the shading features of issue 16
 // on the terrain benchmark's flight and the vegetation benchmark's forest at 1280×720.
 // Each feature measures in a function of its own (bench/ShadowBenchmark.h: sun shadows,
-// key `shadow_frame_ratio`), so features add their keys to the one suite.
+// key `shadow_frame_ratio`, and screen-space ambient occlusion on the same frames, key
+// `ssao_frame_ratio`), so features add their keys to the one suite.
 //
 // Needs a current GL 4.5 context. The forest's plant (a generated oak with its LoD and
 // billboard clouds) is built at the start, which takes a while and is not timed.

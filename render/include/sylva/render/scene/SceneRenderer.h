@@ -23,6 +23,7 @@
 #include "sylva/render/gl/Framebuffer.h"
 #include "sylva/render/objects/MeshRenderer.h"
 #include "sylva/render/scene/SampleAccumulator.h"
+#include "sylva/render/shading/AmbientOcclusionPass.h"
 #include "sylva/render/shading/ShadingPass.h"
 #include "sylva/render/shadows/ShadowMaps.h"
 #include "sylva/render/terrain/TerrainRenderer.h"
@@ -68,6 +69,8 @@ struct RenderSettings {
     // drawn into every cascade but the terrain-only one after the SceneRenderer's own.
     ShadowSettings shadows;
     std::vector<ShadowCaster*> shadowCasters;
+    // Screen-space ambient occlusion of the sky light (seed 001 §7.1; AmbientOcclusionPass).
+    AmbientOcclusionSettings ambientOcclusion;
     // Plants handed in directly (tests, benchmarks), drawn with the species of
     // vegetation(); the `plants` layers of the scenario are streamed besides.
     std::vector<const InstanceBatch*> instanceBatches;
@@ -91,7 +94,8 @@ struct RenderStatistics {
     double vegetationPassSeconds = 0;  // selection, upload and the plants' G-buffer passes
     double meshPassSeconds = 0;        // buildings and models: streaming and G-buffer pass
     MeshStatistics meshes;
-    double shadowPassSeconds = 0;  // all cascades of the shadow maps (to glFinish)
+    double shadowPassSeconds = 0;            // all cascades of the shadow maps (to glFinish)
+    double ambientOcclusionPassSeconds = 0;  // SSAO and its blur, every sample (to glFinish)
     VegetationStatistics vegetation;
     VegetationStreamStatistics vegetationStream;
     double farFieldPassSeconds = 0;  // the far-field canopy's G-buffer passes (to glFinish)
@@ -176,6 +180,7 @@ private:
     double groundHeight_ = 0;      // metres: the ground under the camera (prepareTerrain)
     VegetationStream vegetationStream_;
     std::map<std::uint64_t, std::uint32_t> speciesOfModel_;  // model content hash -> species
+    std::unique_ptr<AmbientOcclusionPass> ambientOcclusion_;
     std::unique_ptr<ShadingPass> shading_;
     std::unique_ptr<SampleAccumulator> accumulator_;
     std::unique_ptr<ShadowMaps> shadowMaps_;

@@ -4,6 +4,7 @@
 // exposure, tone mapping, sRGB output. The only code that lights anything.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 
 #include <glm/glm.hpp>
@@ -33,6 +34,10 @@ struct ShadingSettings {
     // single scattering in the aerial perspective only where the sun reaches. Off: the
     // air is lit everywhere (the state before shadowed in-scattering; tests compare).
     bool shadowedInscattering = true;
+    // Screen-space ambient occlusion of this G-buffer (AmbientOcclusionPass::run's R16F
+    // texture, not owned; 0: none). Multiplies the sky light with the G-buffer's own
+    // occlusion (albedo.a); the sun is never occluded by it.
+    std::uint32_t ambientOcclusion = 0;
 };
 
 class AtmosphereLuts;
