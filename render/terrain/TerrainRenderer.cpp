@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "sylva/core/geo/Ellipsoid.h"
+#include "sylva/core/terrain/ElevationQuery.h"
 
 namespace sylva::render {
 namespace {
@@ -23,6 +24,31 @@ constexpr int kDetailLevelOffset = 1;
 
 glm::mat3 toFloat(const glm::dmat3& m) {
     return glm::mat3(m);
+}
+
+// Interactive frames: the finest of the resident levels (`resident` down to
+// `blendLevel`, all brought up this frame, then `fallback`) whose ground under the camera
+// is below it. A camera placed on finer terrain that is still loading (a walker 1.7 m
+// over the DEM) would otherwise look at a smoother, higher coarse surface from below and
+// see the sky through it. -1 when none is (the resident level is kept then).
+int standingLevel(const Source& elevation, TileProvider& provider, const Camera& camera,
+                  int resident, int blendLevel, int fallback) {
+    const ElevationQuery query(elevation, provider);
+    std::vector<int> candidates;
+    for (int level = resident; level >= blendLevel && level >= 0; --level) {
+        candidates.push_back(level);
+    }
+    if (fallback >= 0 && fallback < blendLevel) {
+        candidates.push_back(fallback);
+    }
+    for (int level : candidates) {
+        Result<std::optional<double>> ground = query.readyGroundHeight(
+            camera.geodetic.latitude, camera.geodetic.longitude, level, level);
+        if (ground && ground.value() && *ground.value() < camera.geodetic.height) {
+            return level;
+        }
+    }
+    return -1;
 }
 
 }  // namespace
@@ -274,6 +300,11 @@ Result<LevelRange> TerrainRenderer::update(
     // resident coarser level (rooted), or nothing is drawn (no root: an empty range).
     if (resident < wanted.coarsest) {
         resident = fallback;  // rings drawn without blending: one level is enough
+    }
+    if (rooted && resident >= 0) {
+        const int standing =
+            standingLevel(*layers.elevation, provider, camera, resident, blendLevel, fallback);
+        resident = standing >= 0 ? standing : resident;
     }
     LevelRange drawn = wanted;
     drawn.finest = rooted ? std::max(resident, wanted.coarsest) : resident;
