@@ -296,8 +296,8 @@ Result<LevelRange> TerrainRenderer::update(
         }
     }
     // The rings from the coarsest wanted to the finest resident level; when even the
-    // coarsest wanted is not resident, its ring and the fill disk show the finest
-    // resident coarser level (rooted), or nothing is drawn (no root: an empty range).
+    // coarsest wanted is not resident, the rings show the finest resident coarser level
+    // (rooted), or nothing is drawn (no root: an empty range).
     if (resident < wanted.coarsest) {
         resident = fallback;  // rings drawn without blending: one level is enough
     }
@@ -306,8 +306,12 @@ Result<LevelRange> TerrainRenderer::update(
             standingLevel(*layers.elevation, provider, camera, resident, blendLevel, fallback);
         resident = standing >= 0 ? standing : resident;
     }
+    // Rooted: every wanted ring is drawn, those finer than the resident level sampling it
+    // (no blend). The ring mesh near the nadir stays fine, so its surface there is the
+    // bilinear ground standingLevel checked (a coarse fill disk's big flat triangles
+    // could pass above the camera and show the sky below the horizon).
     LevelRange drawn = wanted;
-    drawn.finest = rooted ? std::max(resident, wanted.coarsest) : resident;
+    drawn.finest = rooted ? wanted.finest : resident;
     textureCeiling_ = resident;
     statistics_.textureLevel = resident;
     const std::uint64_t uploaded = heightTexture_.uploadedBytes() + normalTexture_.uploadedBytes() +

@@ -469,7 +469,7 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
     depth_.clear();  // read back only when needed (picking, frame callbacks)
     near_ = renderer_->near();
     report_.milliseconds = milliseconds;
-    report_.levelsDrawn = statistics.terrain.levels.finest;
+    report_.levelsDrawn = statistics.terrain.textureLevel;  // the finest level resident
     report_.levelsWanted = statistics.terrain.wanted.finest;
     report_.queuedTiles = scheduler_->queuedTasks();
     report_.instancesDrawn = statistics.vegetation.drawnInstances;

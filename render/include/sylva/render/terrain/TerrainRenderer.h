@@ -88,9 +88,9 @@ public:
     // level, whose fill disk then covers the nadir, so a missing level never leaves a
     // hole. `waitForAll` (batch rendering) waits for every level, so the image does not
     // depend on thread timing. Interactive (`waitForAll` false): nothing is waited for
-    // but the resident root level (TerrainSettings::residentLevel); when even the
-    // coarsest wanted level is not ready, the coarsest wanted ring and the fill disk are
-    // drawn from the finest ready coarser level (statistics().textureLevel). Returns the
+    // but the resident root level (TerrainSettings::residentLevel); every wanted ring is
+    // drawn, those finer than the finest resident level (statistics().textureLevel, at
+    // most one whose ground under the camera is below it) from that level. Returns the
     // levels to draw (statistics().degraded says why fewer on error; empty, finest <
     // coarsest, only without a root), or the error when not even the coarsest level
     // could be made.
