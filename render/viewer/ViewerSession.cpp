@@ -199,7 +199,12 @@ std::optional<double> ViewerSession::groundHeight(double latitude, double longit
     const auto clamped = [&](double ground) {
         return setup_.settings.ocean ? std::max(ground, 0.0) : ground;
     };
-    for (int level = levels.finest; level >= 0 && !wait; --level) {
+    // No finer than the level the renderer last drew from, so a walker stands on the
+    // terrain shown (refined as finer levels become resident), never under it.
+    const int resident = renderer_->statistics().terrain.textureLevel;
+    const int finest =
+        frames_ > 0 && resident >= 0 ? std::min(levels.finest, resident) : levels.finest;
+    for (int level = finest; level >= 0 && !wait; --level) {
         Result<std::optional<double>> ground =
             query.readyGroundHeight(latitude, longitude, level, level);
         if (!ground) {
