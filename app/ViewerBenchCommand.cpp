@@ -1,5 +1,5 @@
 // `sylva bench viewer [--json] [--project FILE] [--size WxH] [--budget-ms N] [--steps N]
-// [--still N]`: the interactive viewer's frame budget on a scripted Olinda flight
+// [--still N] [--trace]`: the interactive viewer's frame budget on a scripted Olinda flight
 // (bench/ViewerBenchmark.h). Prints the metrics as JSON with --json, else one line each.
 #include <cstdio>
 
@@ -11,8 +11,13 @@
 namespace sylva::app {
 
 int runViewerBench(const std::vector<std::string>& arguments) {
-    const ParsedCommandLine command = parseCommandLine(
-        arguments, {{"json", false}, {"project"}, {"size"}, {"budget-ms"}, {"steps"}, {"still"}});
+    const ParsedCommandLine command = parseCommandLine(arguments, {{"json", false},
+                                                                   {"project"},
+                                                                   {"size"},
+                                                                   {"budget-ms"},
+                                                                   {"steps"},
+                                                                   {"still"},
+                                                                   {"trace", false}});
     if (!command.error.empty() || !command.positional.empty()) {
         reportError(command.error.empty() ? "bench viewer takes no arguments" : command.error);
         return 2;
@@ -37,6 +42,9 @@ int runViewerBench(const std::vector<std::string>& arguments) {
         *target = value.value().value_or(*target);
     }
     options.budgetMilliseconds = budget;
+    if (command.has("trace")) {
+        options.trace = stderr;  // one line per frame
+    }
     Result<bench::ViewerBenchmarkResult> result = bench::runViewerBenchmark(options);
     if (!result) {
         reportError(result.error().message);

@@ -47,15 +47,28 @@ struct FrameRecord {
     bool holes = false;
 };
 
-// Whether a pixel whose ray meets the ellipsoid (farther than twice the near plane) shows
-// sky: the terrain left a hole there.
-bool hasHoles(const render::ViewerFrame& frame) {
+// A hole: a pixel that shows sky (depth 0) although its view ray passes at least
+// `kHoleDepth` metres under the ellipsoid's surface (the ellipsoid made a sphere by
+// scaling z), beyond twice the near plane. Rays that only graze the ellipsoid are not
+// holes: the terrain rings are a mesh whose edges are chords of the surface (sagitta
+// up to ~3 m at the coarsest ring spacing seen from low heights, ~20 km for the rings
+// of level 0 seen from space), so at the horizon and the limb the sky rightly shows
+// through where the exact ellipsoid would still be hit.
+constexpr double kHoleDepth = 50.0;
+
+struct HoleCount {
+    std::size_t pixels = 0;
+    int firstX = -1, firstY = -1;
+};
+
+HoleCount countHoles(const render::ViewerFrame& frame) {
+    HoleCount count;
     const Camera& camera = *frame.camera;
     const double scale = Ellipsoid::kSemiMajorAxis / Ellipsoid::kSemiMinorAxis;
     const glm::dvec3 origin(camera.position.x, camera.position.y, camera.position.z * scale);
     const double tangent = std::tan(camera.verticalFov / 2);
     const double aspect = double(frame.width) / frame.height;
-    const double a2 = Ellipsoid::kSemiMajorAxis * Ellipsoid::kSemiMajorAxis;
+    const double inner = Ellipsoid::kSemiMajorAxis - kHoleDepth;
     for (int y = 0; y < frame.height; ++y) {
         for (int x = 0; x < frame.width; ++x) {
             if ((*frame.depth)[std::size_t(y) * frame.width + x] > 0.0f) {
@@ -65,21 +78,25 @@ bool hasHoles(const render::ViewerFrame& frame) {
                                   (1.0 - 2.0 * (y + 0.5) / frame.height) * tangent, -1.0);
             glm::dvec3 direction = camera.axes * glm::normalize(view);
             direction.z *= scale;
-            // |origin + t direction|² = a² (the ellipsoid made a sphere by scaling z).
+            // |origin + t direction|² = (a − depth)²: the ray reaches kHoleDepth under
+            // the surface (of the sphere the ellipsoid becomes).
             const double qa = glm::dot(direction, direction);
             const double qb = 2.0 * glm::dot(origin, direction);
-            const double qc = glm::dot(origin, origin) - a2;
+            const double qc = glm::dot(origin, origin) - inner * inner;
             const double discriminant = qb * qb - 4 * qa * qc;
             if (discriminant < 0) {
                 continue;
             }
             const double t = (-qb - std::sqrt(discriminant)) / (2 * qa);
             if (t > 2.0 * frame.near) {
-                return true;
+                if (count.pixels++ == 0) {
+                    count.firstX = x;
+                    count.firstY = y;
+                }
             }
         }
     }
-    return false;
+    return count;
 }
 
 std::string flightScript(const ViewerBenchmarkOptions& options) {
@@ -91,7 +108,8 @@ std::string flightScript(const ViewerBenchmarkOptions& options) {
     for (int i = 0; i < options.flightSteps; ++i) {
         script += "fly 1.5 0 0\nframes 1\n";
     }
-    script += "frames " + std::to_string(options.stillFrames) + "\n";
+    // Still: the frames asked for, then on until nothing is pending (full detail).
+    script += "frames " + std::to_string(options.stillFrames) + "\nwait-tiles\n";
     return script;
 }
 
@@ -192,8 +210,19 @@ Result<ViewerBenchmarkResult> runViewerBenchmark(const ViewerBenchmarkOptions& o
         record.pending = frame.pending;
         record.moved = frame.moved;
         record.level = frame.budgetLevel;
-        record.holes = hasHoles(frame);
+        const HoleCount holes = countHoles(frame);
+        record.holes = holes.pixels > 0;
         frames.push_back(record);
+        if (options.trace != nullptr) {
+            std::fprintf(options.trace,
+                         "frame %zu: t %.2f s, %.1f ms, %s%s, budget level %d, terrain levels "
+                         "%d/%d, holes %zu (first at %d,%d)\n",
+                         frames.size() - 1, record.end, record.milliseconds,
+                         record.moved ? "moved" : "still", record.pending ? ", pending" : "",
+                         record.level, frame.levelsDrawn, frame.levelsWanted, holes.pixels,
+                         holes.firstX, holes.firstY);
+            std::fflush(options.trace);
+        }
     };
     render::Viewer viewer(batch, host, std::move(viewerOptions));
     if (Status ran = viewer.run(); !ran) {

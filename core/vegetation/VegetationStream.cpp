@@ -33,6 +33,17 @@ double distanceToTile(double latitude, double longitude, const TileKey& key) {
     return std::sqrt(north * north + east * east);
 }
 
+// The tile's priority by screen importance on the terrain's scale (FrameWantedSet): the
+// clipmap ring level whose ring holds the tile's nearest point (ring i spans view
+// distances pi R 2^-(i+1) .. pi R 2^-i), so instance tiles near the camera come before
+// far terrain detail, and far ones after the terrain levels around them.
+int screenPriority(double latitude, double longitude, double heightAboveGround,
+                   const TileKey& key) {
+    const double ground = distanceToTile(latitude, longitude, key);
+    const double distance = std::max(std::hypot(ground, heightAboveGround), 1.0);
+    return std::clamp(int(std::floor(std::log2(kPi * kMetresPerRadian / distance))), 0, 30);
+}
+
 void collect(const TileKey& key, double latitude, double longitude, double radius, int finest,
              std::vector<TileKey>& out) {
     const double distance = distanceToTile(latitude, longitude, key);
@@ -147,7 +158,10 @@ Result<std::vector<const InstanceBatch*>> VegetationStream::update(
                     }
                     tile = produced.value();
                 } else {
-                    TileLookup lookup = provider.tryGet(*layer.source, key, 40 + key.level);
+                    TileLookup lookup =
+                        provider.tryGet(*layer.source, key,
+                                        screenPriority(camera.geodetic.latitude,
+                                                       camera.geodetic.longitude, height, key));
                     if (lookup.state == TileLookup::State::Failed) {
                         return lookup.error;
                     }

@@ -51,6 +51,9 @@ Status BatchRenderer::setProject(std::vector<ProjectModel> scenarios) {
             scheduler_->retainOnly(graphs->contentHashes());
         }
     }
+    if (renderer_) {
+        renderer_->finishAssetBuilds();  // they read plant models of the graphs going now
+    }
     project_ = std::move(graphs.value());
     return {};
 }

@@ -4,17 +4,48 @@
 #include <glad/gl.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <string>
 
+#if defined(__linux__)
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
 #include "sylva/core/atmosphere/Exposure.h"
+#include "sylva/core/base/WorkerPool.h"
 #include "sylva/core/geo/Ellipsoid.h"
+#include "sylva/core/scheduler/FrameWantedSet.h"
 #include "sylva/core/sources/plants/PlantModelSource.h"
 #include "sylva/core/sources/plants/PlantsSource.h"
 #include "sylva/core/terrain/ElevationQuery.h"
 
 namespace sylva::render {
+namespace {
+
+// Clearance assumed under an interactive camera whose ground came from a coarser level
+// than the one it stands on (the finer tile is still being produced), metres.
+constexpr double kEstimatedClearance = 0.5;
+
+// A plant asset's build in the background: serial on its own thread (like the Scheduler's
+// workers) and five nice steps below the render thread, so frames keep their CPU.
+Result<std::shared_ptr<const PlantAsset>> buildAssetInBackground(const PlantModelSource* model) {
+#if defined(__linux__)
+    const auto thread = static_cast<id_t>(::syscall(SYS_gettid));
+    errno = 0;
+    const int current = getpriority(PRIO_PROCESS, thread);
+    if (errno == 0) {
+        (void)setpriority(PRIO_PROCESS, thread, std::min(19, current + 5));
+    }
+#endif
+    WorkerPool::runSeriallyOnThisThread();
+    return model->asset();
+}
+
+}  // namespace
 
 Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const ShaderLibrary& library,
                                                              const TerrainSettings& settings) {
@@ -62,7 +93,16 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const ShaderLibrary
     return renderer;
 }
 
-SceneRenderer::~SceneRenderer() = default;
+SceneRenderer::~SceneRenderer() {
+    finishAssetBuilds();
+}
+
+void SceneRenderer::finishAssetBuilds() {
+    for (auto& [hash, build] : assetBuilds_) {
+        build.wait();
+    }
+    assetBuilds_.clear();
+}
 
 glm::dmat4 SceneRenderer::projection(double verticalFov, double aspect, double near,
                                      const glm::dvec2& lensShift) {
@@ -104,20 +144,58 @@ Status SceneRenderer::ensureTargets(int width, int height, bool linearOutput) {
     return Status::success();
 }
 
+Result<double> SceneRenderer::readyGround(const TerrainLayers& layers, TileProvider& provider,
+                                          const Camera& camera, const RenderSettings& settings) {
+    const ElevationQuery query(*layers.elevation, provider);
+    const double latitude = camera.geodetic.latitude;
+    const double longitude = camera.geodetic.longitude;
+    // The levels seen from the last known ground (sea level at first), probed finest
+    // first; every tile probed is one the terrain's clipmaps want anyway.
+    const double estimate = groundKnown_ ? groundHeight_ : 0.0;
+    const LevelRange levels = terrain_->visibleLevels(
+        camera, std::max(camera.geodetic.height - estimate, 0.01), settings.height);
+    for (int level = levels.finest; level >= 0; --level) {
+        Result<std::optional<double>> ground =
+            query.readyGroundHeight(latitude, longitude, level, level);
+        if (!ground) {
+            return ground.error();
+        }
+        if (ground.value()) {
+            statistics_.groundLevel = level;
+            return *ground.value();
+        }
+    }
+    statistics_.groundLevel = -1;
+    if (groundKnown_) {
+        return groundHeight_;  // the last frame's, until a tile under the camera arrives
+    }
+    // The very first frame: the coarsest level (two tiles cover the globe), waited for.
+    statistics_.groundLevel = 0;
+    return query.groundHeight(latitude, longitude, 0);
+}
+
 Result<LevelRange> SceneRenderer::prepareTerrain(const TerrainLayers& layers,
                                                  TileProvider& provider, const Camera& camera,
                                                  const RenderSettings& settings) {
     // Height above the terrain at the nadir, from the level that will be drawn there:
     // estimate with a coarse level first, then refine at the finest visible level.
+    // Interactive frames take the finest level that is ready instead of waiting.
     const ElevationQuery query(*layers.elevation, provider);
-    Result<double> ground =
-        query.groundHeight(camera.geodetic.latitude, camera.geodetic.longitude, 12);
-    if (!ground) {
-        return ground.error();
+    Result<double> ground = Error{""};
+    LevelRange levels;
+    if (settings.waitForTiles) {
+        ground = query.groundHeight(camera.geodetic.latitude, camera.geodetic.longitude, 12);
+        if (!ground) {
+            return ground.error();
+        }
+        levels = terrain_->visibleLevels(
+            camera, std::max(camera.geodetic.height - ground.value(), 0.01), settings.height);
+        ground =
+            query.groundHeight(camera.geodetic.latitude, camera.geodetic.longitude, levels.finest);
+        statistics_.groundLevel = levels.finest;
+    } else {
+        ground = readyGround(layers, provider, camera, settings);
     }
-    LevelRange levels = terrain_->visibleLevels(
-        camera, std::max(camera.geodetic.height - ground.value(), 0.01), settings.height);
-    ground = query.groundHeight(camera.geodetic.latitude, camera.geodetic.longitude, levels.finest);
     if (!ground) {
         return ground.error();
     }
@@ -126,7 +204,17 @@ Result<LevelRange> SceneRenderer::prepareTerrain(const TerrainLayers& layers,
         groundHeight = std::max(groundHeight, 0.0);
     }
     groundHeight_ = groundHeight;
-    const double aboveTerrain = camera.geodetic.height - groundHeight;
+    groundKnown_ = true;
+    statistics_.groundHeight = groundHeight;
+    double aboveTerrain = camera.geodetic.height - groundHeight;
+    if (!settings.waitForTiles) {
+        levels = terrain_->visibleLevels(camera, std::max(aboveTerrain, kEstimatedClearance),
+                                         settings.height);
+        if (statistics_.groundLevel < levels.finest) {
+            // A coarser level's ground: the camera may stand under it on finer terrain.
+            aboveTerrain = std::max(aboveTerrain, kEstimatedClearance);
+        }
+    }
     if (aboveTerrain <= 0.0) {
         char buffer[160];
         std::snprintf(buffer, sizeof buffer,
@@ -143,11 +231,13 @@ Result<std::vector<const InstanceBatch*>> SceneRenderer::streamVegetation(
     const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
     const RenderSettings& settings) {
     statistics_.vegetationStream = {};
+    statistics_.pendingSpecies = 0;
     std::vector<const InstanceBatch*> batches = settings.instanceBatches;
     if (layers.plants.empty()) {
         return batches;
     }
-    Result<std::vector<VegetationStreamLayer>> streamLayers = vegetationLayers(layers);
+    Result<std::vector<VegetationStreamLayer>> streamLayers =
+        vegetationLayers(layers, settings.waitForTiles);
     if (!streamLayers) {
         return streamLayers.error();
     }
@@ -261,7 +351,12 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
         !status) {
         return status.error();
     }
-    Result<LevelRange> ready = prepareTerrain(layers, provider, camera, settings);
+    // Interactive frames gather every client's wanted tiles (terrain, canopy, instance
+    // tiles, the nadir probe) and hand the Scheduler one list (FrameWantedSet); batch
+    // frames wait for everything, client by client, as before.
+    FrameWantedSet frameWanted(provider);
+    TileProvider& tiles = settings.waitForTiles ? provider : frameWanted;
+    Result<LevelRange> ready = prepareTerrain(layers, tiles, camera, settings);
     if (!ready) {
         return ready.error();
     }
@@ -275,15 +370,25 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     statistics_.vegetationPassSeconds = 0;
     statistics_.ambientOcclusionPassSeconds = 0;
     Result<std::vector<const InstanceBatch*>> batches =
-        streamVegetation(layers, provider, camera, settings);
+        streamVegetation(layers, tiles, camera, settings);
     if (!batches) {
         return batches.error();
     }
-    if (Status streamed = streamMeshes(layers, provider, camera, settings); !streamed) {
+    if (Status streamed = streamMeshes(layers, tiles, camera, settings); !streamed) {
         return streamed.error();
     }
-    if (Status prepared = prepareFarField(layers, provider, camera, levels, settings); !prepared) {
+    if (Status prepared = prepareFarField(layers, tiles, camera, levels, settings); !prepared) {
         return prepared.error();
+    }
+    if (!settings.waitForTiles) {
+        frameWanted.flush();
+        const TerrainFrameStatistics& terrain = terrain_->statistics();
+        statistics_.pending =
+            terrain.waitingLevel >= 0 || statistics_.groundLevel < terrain.wanted.finest ||
+            statistics_.farField.waiting || statistics_.pendingSpecies > 0 ||
+            statistics_.vegetationStream.readyTiles < statistics_.vegetationStream.wantedTiles;
+    } else {
+        statistics_.pending = false;
     }
     near_ = std::clamp(0.3 * statistics_.heightAboveTerrain, 0.02, 1.0e4);
     const glm::dmat4 projection = SceneRenderer::projection(
@@ -413,9 +518,47 @@ double SceneRenderer::meterEv100(const Camera& camera, double groundHeight,
     return ev100FromIlluminance(luminance(shading_->horizontalIlluminance(point, sun, atmosphere)));
 }
 
+Result<std::optional<std::uint32_t>> SceneRenderer::speciesFor(const PlantModelSource& model,
+                                                               bool wait) {
+    const std::uint64_t hash = model.contentHash();
+    if (auto found = speciesOfModel_.find(hash); found != speciesOfModel_.end()) {
+        return std::optional<std::uint32_t>(found->second);
+    }
+    auto build = assetBuilds_.find(hash);
+    if (build == assetBuilds_.end() && !wait) {
+        // The model outlives the build: finishAssetBuilds() runs before graphs are dropped.
+        build = assetBuilds_
+                    .emplace(hash, std::async(std::launch::async, buildAssetInBackground, &model))
+                    .first;
+    }
+    if (build != assetBuilds_.end() && !wait &&
+        build->second.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+        return std::optional<std::uint32_t>();
+    }
+    Result<std::shared_ptr<const PlantAsset>> asset = Error{""};
+    if (build != assetBuilds_.end()) {
+        asset = build->second.get();
+        assetBuilds_.erase(build);
+    } else {
+        asset = model.asset();
+    }
+    if (!asset) {
+        return asset.error();
+    }
+    Result<std::uint32_t> index = vegetation_->addSpecies(asset.value());
+    if (!index) {
+        return index.error();
+    }
+    speciesOfModel_.emplace(hash, index.value());
+    // Batches made while the species was missing lack its plants.
+    vegetationStream_.clear();
+    return std::optional<std::uint32_t>(index.value());
+}
+
 Result<std::vector<VegetationStreamLayer>> SceneRenderer::vegetationLayers(
-    const TerrainLayers& layers) {
+    const TerrainLayers& layers, bool wait) {
     std::vector<VegetationStreamLayer> out;
+    statistics_.pendingSpecies = 0;
     for (const PlantsSource* plants : layers.plants) {
         VegetationStreamLayer layer;
         layer.source = plants;
@@ -426,19 +569,14 @@ Result<std::vector<VegetationStreamLayer>> SceneRenderer::vegetationLayers(
                 layer.species.push_back(-1);
                 continue;
             }
-            auto found = speciesOfModel_.find(model->contentHash());
-            if (found == speciesOfModel_.end()) {
-                Result<std::shared_ptr<const PlantAsset>> asset = model->asset();
-                if (!asset) {
-                    return asset.error();
-                }
-                Result<std::uint32_t> index = vegetation_->addSpecies(asset.value());
-                if (!index) {
-                    return index.error();
-                }
-                found = speciesOfModel_.emplace(model->contentHash(), index.value()).first;
+            Result<std::optional<std::uint32_t>> species = speciesFor(*model, wait);
+            if (!species) {
+                return species.error();
             }
-            layer.species.push_back(int(found->second));
+            if (!species.value()) {
+                ++statistics_.pendingSpecies;  // drawn once built: not a hole, the terrain shows
+            }
+            layer.species.push_back(species.value() ? int(*species.value()) : -1);
         }
         out.push_back(std::move(layer));
     }

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "sylva/core/geo/Ellipsoid.h"
+#include "sylva/core/terrain/ElevationQuery.h"
 
 namespace sylva::render {
 namespace {
@@ -23,6 +24,31 @@ constexpr int kDetailLevelOffset = 1;
 
 glm::mat3 toFloat(const glm::dmat3& m) {
     return glm::mat3(m);
+}
+
+// Interactive frames: the finest of the resident levels (`resident` down to
+// `blendLevel`, all brought up this frame, then `fallback`) whose ground under the camera
+// is below it. A camera placed on finer terrain that is still loading (a walker 1.7 m
+// over the DEM) would otherwise look at a smoother, higher coarse surface from below and
+// see the sky through it. -1 when none is (the resident level is kept then).
+int standingLevel(const Source& elevation, TileProvider& provider, const Camera& camera,
+                  int resident, int blendLevel, int fallback) {
+    const ElevationQuery query(elevation, provider);
+    std::vector<int> candidates;
+    for (int level = resident; level >= blendLevel && level >= 0; --level) {
+        candidates.push_back(level);
+    }
+    if (fallback >= 0 && fallback < blendLevel) {
+        candidates.push_back(fallback);
+    }
+    for (int level : candidates) {
+        Result<std::optional<double>> ground = query.readyGroundHeight(
+            camera.geodetic.latitude, camera.geodetic.longitude, level, level);
+        if (ground && ground.value() && *ground.value() < camera.geodetic.height) {
+            return level;
+        }
+    }
+    return -1;
 }
 
 }  // namespace
@@ -108,16 +134,7 @@ LevelRange TerrainRenderer::visibleLevels(const Camera& camera, double heightAbo
                                           settings_.maxLevel);
 }
 
-Result<LevelRange> TerrainRenderer::update(
-    const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
-    const LevelRange& wanted, std::optional<std::chrono::steady_clock::time_point> deadline,
-    bool waitForAll) {
-    SYLVA_CHECK(layers.elevation != nullptr && layers.normals != nullptr);
-    const auto start = std::chrono::steady_clock::now();
-    const double latitude = camera.geodetic.latitude;
-    const double longitude = camera.geodetic.longitude;
-    const int size = settings_.clipmapSize;
-    hasColor_ = layers.color != nullptr;
+void TerrainRenderer::dropChangedSources(const TerrainLayers& layers) {
     // A different source (another scenario, an edited parameter) means different
     // texels under the same windows: drop that layer's levels.
     const std::uint64_t hashes[3] = {layers.elevation->contentHash(), layers.normals->contentHash(),
@@ -131,28 +148,88 @@ Result<LevelRange> TerrainRenderer::update(
             sourceHashes_[layer] = hashes[layer];
         }
     }
-    struct Layer {
-        Clipmap* clipmap;
-        ClipmapTexture* texture;
-        const Source* source;
-        int levelOffset;
-    };
-    const Layer layerList[] = {
+}
+
+Status TerrainRenderer::bringUpLevel(int level, const LevelWindows& windows, TileProvider& provider,
+                                     bool wait, ReadyTiles& ready, bool& pending) {
+    const int size = settings_.clipmapSize;
+    // Every tile of the level's windows: ready, pending (not yet produced) or failed.
+    Status status;
+    while (true) {
+        pending = false;
+        for (const auto& [layer, window] : windows) {
+            for (const TileKey& key : Clipmap::tilesFor(window, size)) {
+                const auto id = std::make_pair(layer->source->contentHash(), key);
+                if (ready.count(id) != 0) {
+                    continue;
+                }
+                TileLookup lookup =
+                    provider.tryGet(*layer->source, key, level + settings_.priorityOffset);
+                if (lookup.state == TileLookup::State::Ready) {
+                    ready.emplace(id, std::move(lookup.tile));
+                } else if (lookup.state == TileLookup::State::Failed) {
+                    status = lookup.error;
+                } else {
+                    pending = true;
+                }
+            }
+        }
+        if (!status || !pending || !wait) {
+            break;
+        }
+        provider.waitForProgress(std::chrono::milliseconds(20));
+    }
+    if (!status || pending) {
+        return status;
+    }
+    for (const auto& [layer, window] : windows) {
+        const Clipmap::Fetch fetch = [&](const TileKey& key) -> Result<TilePointer> {
+            auto it = ready.find({layer->source->contentHash(), key});
+            SYLVA_CHECK_MESSAGE(it != ready.end(), "clipmap update outside Clipmap::tilesFor");
+            return it->second;
+        };
+        status = layer->clipmap->update(level, window, fetch);
+        layer->texture->upload(*layer->clipmap, layer->clipmap->takeDirtyRegions());
+        if (!status) {
+            return status;
+        }
+    }
+    return status;
+}
+
+Result<LevelRange> TerrainRenderer::update(
+    const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
+    const LevelRange& wanted, std::optional<std::chrono::steady_clock::time_point> deadline,
+    bool waitForAll) {
+    SYLVA_CHECK(layers.elevation != nullptr && layers.normals != nullptr);
+    const auto start = std::chrono::steady_clock::now();
+    const double latitude = camera.geodetic.latitude;
+    const double longitude = camera.geodetic.longitude;
+    const int size = settings_.clipmapSize;
+    hasColor_ = layers.color != nullptr;
+    dropChangedSources(layers);
+    const LayerSlot layerList[] = {
         {height_.get(), &heightTexture_, layers.elevation, kHeightLevelOffset},
         {normals_.get(), &normalTexture_, layers.normals, kDetailLevelOffset},
         {color_.get(), &colorTexture_, layers.color, kDetailLevelOffset}};
-    const int firstLevel = std::max(0, wanted.coarsest - 1);  // the coarser neighbour blends
+    // The coarser neighbour blends; interactive frames also keep the levels from the
+    // resident root up, so something coarse is always there to draw.
+    const bool rooted = !waitForAll && settings_.residentLevel >= 0;
+    int firstLevel = std::max(0, wanted.coarsest - 1);  // = blendLevel below
+    if (rooted) {
+        firstLevel = std::min(firstLevel, settings_.residentLevel);
+    }
 
     // Seed 001 Algorithm 3: gather the tiles of every level (coarse before fine by
     // priority), hand the list over (queued tasks of the previous focus are cancelled,
     // running ones finish and stay cached), then bring levels up coarse to fine.
     struct LevelTiles {
-        std::vector<std::pair<const Layer*, ClipmapWindow>> windows;
+        LevelWindows windows;
     };
     std::vector<LevelTiles> levelTiles(std::size_t(wanted.finest - firstLevel + 1));
     std::vector<TileRequest> requests;
     for (int level = firstLevel; level <= wanted.finest; ++level) {
-        for (const Layer& layer : layerList) {
+        for (const LayerSlot& layer : layerList) {
             if (layer.source == nullptr) {
                 continue;
             }
@@ -163,7 +240,7 @@ Result<LevelRange> TerrainRenderer::update(
             }
             levelTiles[std::size_t(level - firstLevel)].windows.emplace_back(&layer, window);
             for (const TileKey& key : Clipmap::tilesFor(window, size)) {
-                requests.push_back({layer.source, key, level});
+                requests.push_back({layer.source, key, level + settings_.priorityOffset});
             }
         }
     }
@@ -173,78 +250,70 @@ Result<LevelRange> TerrainRenderer::update(
     statistics_.wanted = wanted;
     statistics_.degraded.clear();
     statistics_.waitingLevel = -1;
-    LevelRange drawn = wanted;
+    const int blendLevel = std::max(0, wanted.coarsest - 1);
+    int resident = wanted.finest;  // the finest level brought up (all coarser drawn ones are)
+    int fallback = -1;             // the finest level brought up coarser than the rings
     // Tiles already obtained in this call, so a level waited for keeps them even if the
     // cache prunes meanwhile.
-    std::map<std::pair<std::uint64_t, TileKey>, TilePointer> ready;
+    ReadyTiles ready;
     for (int level = firstLevel; level <= wanted.finest; ++level) {
-        const LevelTiles& needed = levelTiles[std::size_t(level - firstLevel)];
-        // Every tile of the level's windows: ready, pending (not yet produced) or failed.
-        Status status;
+        // Batch rendering waits for every level; interactive frames only for the
+        // resident root, or (without one) for nothing.
         bool pending = false;
-        while (true) {
-            pending = false;
-            for (const auto& [layer, window] : needed.windows) {
-                for (const TileKey& key : Clipmap::tilesFor(window, size)) {
-                    const auto id = std::make_pair(layer->source->contentHash(), key);
-                    if (ready.count(id) != 0) {
-                        continue;
-                    }
-                    TileLookup lookup = provider.tryGet(*layer->source, key, level);
-                    if (lookup.state == TileLookup::State::Ready) {
-                        ready.emplace(id, std::move(lookup.tile));
-                    } else if (lookup.state == TileLookup::State::Failed) {
-                        status = lookup.error;
-                    } else {
-                        pending = true;
-                    }
-                }
-            }
-            // The coarsest levels are always waited for (nothing else covers the
-            // globe); batch rendering waits for every level.
-            if (!status || !pending || (!waitForAll && level > wanted.coarsest)) {
-                break;
-            }
-            provider.waitForProgress(std::chrono::milliseconds(20));
-        }
-        if (status && !pending) {
-            for (const auto& [layer, window] : needed.windows) {
-                const Clipmap::Fetch fetch = [&](const TileKey& key) -> Result<TilePointer> {
-                    auto it = ready.find({layer->source->contentHash(), key});
-                    SYLVA_CHECK_MESSAGE(it != ready.end(),
-                                        "clipmap update outside Clipmap::tilesFor");
-                    return it->second;
-                };
-                status = layer->clipmap->update(level, window, fetch);
-                layer->texture->upload(*layer->clipmap, layer->clipmap->takeDirtyRegions());
-                if (!status) {
-                    break;
-                }
-            }
-        }
+        Status status =
+            bringUpLevel(level, levelTiles[std::size_t(level - firstLevel)].windows, provider,
+                         waitForAll || (rooted && level == firstLevel), ready, pending);
         if (!status) {
             if (level <= wanted.coarsest) {
                 return status.error();
             }
-            drawn.finest = level - 1;
+            resident = level - 1;
             statistics_.degraded = "level " + std::to_string(level) +
-                                   " failed, drawing up to level " + std::to_string(drawn.finest) +
+                                   " failed, drawing up to level " + std::to_string(resident) +
                                    ": " + status.error().message;
             break;
         }
+        if (pending && level < blendLevel) {
+            // A fallback level coarser than any drawn ring: the finer ones go on.
+            statistics_.waitingLevel =
+                statistics_.waitingLevel < 0 ? level : statistics_.waitingLevel;
+            continue;
+        }
         if (pending) {
             // Not an error: the workers are still producing; a later frame draws it.
-            drawn.finest = level - 1;
+            resident = level - 1;
             statistics_.waitingLevel = level;
             break;
         }
+        if (level < wanted.coarsest) {
+            fallback = level;
+        }
         if (deadline && level >= wanted.coarsest && level < wanted.finest &&
             std::chrono::steady_clock::now() > *deadline) {
-            drawn.finest = level;
+            resident = level;
             statistics_.degraded = "time limit reached after level " + std::to_string(level);
             break;
         }
     }
+    // The rings from the coarsest wanted to the finest resident level; when even the
+    // coarsest wanted is not resident, the rings show the finest resident coarser level
+    // (rooted), or nothing is drawn (no root: an empty range).
+    if (resident < wanted.coarsest) {
+        resident = fallback;  // rings drawn without blending: one level is enough
+    }
+    if (rooted && resident >= 0) {
+        const int standing =
+            standingLevel(*layers.elevation, provider, camera, resident, blendLevel, fallback);
+        resident = standing >= 0 ? standing : resident;
+    }
+    // Rooted: every wanted ring is drawn, those finer than the resident level sampling it
+    // (no blend). The ring mesh near the nadir stays fine, so its surface there is the
+    // bilinear ground standingLevel checked (a coarse fill disk's big flat triangles
+    // could pass above the camera and show the sky below the horizon).
+    LevelRange drawn = wanted;
+    drawn.finest = rooted ? wanted.finest : resident;
+    textureCeiling_ = resident;
+    statistics_.textureLevel = resident;
     const std::uint64_t uploaded = heightTexture_.uploadedBytes() + normalTexture_.uploadedBytes() +
                                    colorTexture_.uploadedBytes();
     statistics_.uploadedBytes = uploaded - uploadedBefore_;
@@ -341,8 +410,10 @@ std::uint64_t TerrainRenderer::drawRings(ShaderProgram& program, const Camera& c
     }
     heightTexture_.bind(0);
     std::uint64_t triangles = 0;
+    // A ring finer than the resident levels samples the finest resident one.
     for (int level = levels.coarsest; level <= levels.finest; ++level) {
         program.setInt("uLevel", level);
+        program.setInt("uTextureLevel", std::min(level, textureCeiling_));
         program.setFloat("uLevelScale", float(std::ldexp(1.0, -level)));
         glBindVertexArray(ring_.vertexArray.get());
         glDrawElements(GL_TRIANGLES, ring_.indexCount, GL_UNSIGNED_INT, nullptr);
@@ -350,6 +421,7 @@ std::uint64_t TerrainRenderer::drawRings(ShaderProgram& program, const Camera& c
     }
     // The fill disk closes the finest level down to the nadir; it never blends.
     program.setInt("uLevel", levels.finest);
+    program.setInt("uTextureLevel", std::min(levels.finest, textureCeiling_));
     program.setFloat("uLevelScale", float(std::ldexp(1.0, -levels.finest)));
     glBindVertexArray(fill_.vertexArray.get());
     glDrawElements(GL_TRIANGLES, fill_.indexCount, GL_UNSIGNED_INT, nullptr);

@@ -28,6 +28,10 @@ Result<std::unique_ptr<FarFieldCanopy>> FarFieldCanopy::create(const ShaderLibra
                                                                const TerrainSettings& settings) {
     TerrainSettings rings = settings;
     rings.fragmentShader = "vegetation/farfield_canopy.frag";
+    // An overlay over the terrain: interactive frames draw it once its coarsest level is
+    // ready and never wait for it; its tiles follow the terrain's of the same level.
+    rings.residentLevel = -1;
+    rings.priorityOffset = 1;
     Result<std::unique_ptr<TerrainRenderer>> renderer = TerrainRenderer::create(library, rings);
     if (!renderer) {
         return renderer.error();
@@ -170,7 +174,8 @@ Result<FarFieldFrame> FarFieldCanopy::update(const TerrainLayers& layers, TilePr
         return ready.error();
     }
     frame_.levels = ready.value();
-    frame_.drawn = true;
+    frame_.waiting = rings_->statistics().waitingLevel >= 0;
+    frame_.drawn = frame_.levels.finest >= frame_.levels.coarsest;
     current_ = &canopy;
     return frame_;
 }

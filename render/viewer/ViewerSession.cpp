@@ -187,36 +187,75 @@ void ViewerSession::cycleMode() {
 }
 
 std::optional<double> ViewerSession::groundHeight(double latitude, double longitude,
-                                                  double heightAboveGround) const {
-    // The ground as the finest ring level drawn at this height shows it (as JobView).
+                                                  double heightAboveGround, bool wait) const {
+    // The ground as the finest ring level drawn at this height shows it (as JobView). A
+    // move never waits for it: the finest level whose tile is ready (the finer ones are
+    // requested), else the ground under the last frame (as SceneRenderer's frames do).
     const double height = std::max(heightAboveGround, 0.5);
     const LevelRange levels =
         LevelVisibility::visibleLevels(height, height, setup_.terrain.maxTerrainHeight,
                                        camera_.verticalFov, height_, setup_.terrain.maxLevel);
     const ElevationQuery query(*layers_.elevation, *scheduler_);
-    Result<double> ground = query.groundHeight(latitude, longitude, levels.finest);
+    const auto clamped = [&](double ground) {
+        return setup_.settings.ocean ? std::max(ground, 0.0) : ground;
+    };
+    // No finer than the level the renderer last drew from, so a walker stands on the
+    // terrain shown (refined as finer levels become resident), never under it.
+    const int resident = renderer_->statistics().terrain.textureLevel;
+    const int finest =
+        frames_ > 0 && resident >= 0 ? std::min(levels.finest, resident) : levels.finest;
+    for (int level = finest; level >= 0 && !wait; --level) {
+        Result<std::optional<double>> ground =
+            query.readyGroundHeight(latitude, longitude, level, level);
+        if (!ground) {
+            return std::nullopt;
+        }
+        if (ground.value()) {
+            return clamped(*ground.value());
+        }
+    }
+    if (!wait && frames_ > 0) {
+        return renderer_->statistics().groundHeight;  // the last frame's
+    }
+    Result<double> ground = query.groundHeight(latitude, longitude, wait ? levels.finest : 0);
     if (!ground) {
         return std::nullopt;
     }
-    return setup_.settings.ocean ? std::max(ground.value(), 0.0) : ground.value();
+    return clamped(ground.value());
 }
 
-void ViewerSession::setCamera(const Camera& camera) {
+std::optional<double> ViewerSession::placedHeight(const Camera& camera, bool wait) const {
     const double above = std::max(camera_.geodetic.height - camera.geodetic.height, 0.0) +
                          std::max(renderer_->statistics().heightAboveTerrain, 1.0);
     const std::optional<double> ground =
-        groundHeight(camera.geodetic.latitude, camera.geodetic.longitude, above);
+        groundHeight(camera.geodetic.latitude, camera.geodetic.longitude, above, wait);
     if (!ground) {
+        return std::nullopt;
+    }
+    if (mode_ == NavigationMode::Walk) {
+        return *ground + options_.walkEyeHeight;
+    }
+    return std::max(camera.geodetic.height, *ground + kFlyClearance);
+}
+
+void ViewerSession::settleOnGround(bool wait) {
+    // The ground under a standing camera refines as finer tiles arrive (or, for a
+    // screenshot, is the finest level's at once): follow it without counting a move.
+    const std::optional<double> height = placedHeight(camera_, wait);
+    if (height && std::abs(*height - camera_.geodetic.height) > 1e-4) {
+        camera_ = CameraNavigation::atHeight(camera_, *height);
+    }
+}
+
+void ViewerSession::setCamera(const Camera& camera) {
+    const std::optional<double> height = placedHeight(camera, false);
+    if (!height) {
         showError("no ground height under the camera (a tile failed): not moved");
         return;
     }
-    Camera placed = camera;
-    if (mode_ == NavigationMode::Walk) {
-        placed = CameraNavigation::atHeight(camera, *ground + options_.walkEyeHeight);
-    } else if (camera.geodetic.height < *ground + kFlyClearance) {
-        placed = CameraNavigation::atHeight(camera, *ground + kFlyClearance);
-    }
-    camera_ = placed;
+    camera_ = std::abs(*height - camera.geodetic.height) > 0.0
+                  ? CameraNavigation::atHeight(camera, *height)
+                  : camera;
     dirty_ = true;
 }
 
@@ -392,6 +431,7 @@ Result<Image> ViewerSession::compose(Image first, Image second) const {
 }
 
 Status ViewerSession::renderFrame(bool waitForTiles) {
+    settleOnGround(waitForTiles);
     RenderSettings settings = setup_.settings;
     settings.width = width_;
     settings.height = height_;
@@ -409,13 +449,11 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
     const auto start = std::chrono::steady_clock::now();
     Result<Image> image = renderScenario(layers_, settings);
     RenderStatistics statistics = renderer_->statistics();
-    bool pending = statistics.terrain.waitingLevel >= 0 ||
-                   statistics.vegetationStream.readyTiles < statistics.vegetationStream.wantedTiles;
+    bool pending = statistics.pending;
     if (image && comparison_ != ComparisonMode::None) {
         Result<Image> second = renderScenario(otherLayers_, settings);
         const RenderStatistics& other = renderer_->statistics();
-        pending = pending || other.terrain.waitingLevel >= 0 ||
-                  other.vegetationStream.readyTiles < other.vegetationStream.wantedTiles;
+        pending = pending || other.pending;
         statistics.vegetationPassSeconds += other.vegetationPassSeconds;
         image = second ? compose(std::move(image.value()), std::move(second.value()))
                        : Result<Image>(second.error());
@@ -436,7 +474,7 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
     depth_.clear();  // read back only when needed (picking, frame callbacks)
     near_ = renderer_->near();
     report_.milliseconds = milliseconds;
-    report_.levelsDrawn = statistics.terrain.levels.finest;
+    report_.levelsDrawn = statistics.terrain.textureLevel;  // the finest level resident
     report_.levelsWanted = statistics.terrain.wanted.finest;
     report_.queuedTiles = scheduler_->queuedTasks();
     report_.instancesDrawn = statistics.vegetation.drawnInstances;
@@ -458,6 +496,8 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
             frame.moved = moved;
             frame.budgetLevel = level;
             frame.instancesDrawn = report_.instancesDrawn;
+            frame.levelsDrawn = report_.levelsDrawn;
+            frame.levelsWanted = report_.levelsWanted;
             frame.camera = &camera_;
             depth_ = renderer_->depth();
             frame.depth = &depth_;

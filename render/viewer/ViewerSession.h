@@ -120,8 +120,16 @@ private:
     // The comparison of the two scenario frames, or the error.
     Result<Image> compose(Image first, Image second) const;
     void setCamera(const Camera& camera);  // keeps it above the ground, marks dirty
-    std::optional<double> groundHeight(double latitude, double longitude,
-                                       double heightAboveGround) const;
+    // The ground under a point: without `wait` from the finest ring level whose tile is
+    // ready (never blocks), with `wait` the finest level's for that height (as JobView).
+    std::optional<double> groundHeight(double latitude, double longitude, double heightAboveGround,
+                                       bool wait) const;
+    // The height `camera` is placed at: eye height over the ground walking, at least the
+    // clearance over it otherwise; nothing when the ground's tile failed.
+    std::optional<double> placedHeight(const Camera& camera, bool wait) const;
+    // Follows the ground under the standing camera (see placedHeight) without marking a
+    // change: interactive frames as finer tiles arrive, screenshots at the finest level.
+    void settleOnGround(bool wait);
     void watchFiles();
     void showError(const std::string& message);
 

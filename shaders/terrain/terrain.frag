@@ -11,7 +11,7 @@ layout(location = 4) in float vDistance;
 uniform sampler2DArray uHeight;
 uniform sampler2DArray uColor;
 uniform sampler2DArray uNormals;
-uniform int uLevel;
+uniform int uTextureLevel;  // the clipmap level sampled (terrain.vert)
 uniform bool uHasColor;
 uniform bool uOcean;
 uniform mat3 uEcefToView;
@@ -20,13 +20,13 @@ layout(location = 0) out vec4 outAlbedo;  // rgb: linear albedo, a: ambient occl
 layout(location = 1) out vec4 outNormal;  // xyz: view-space normal, w: material (1 = water)
 
 void main() {
-    int coarser = max(uLevel - 1, 0);
-    vec3 fineNormal = texture(uNormals, vec3(vDetailCoordinate.xy, float(uLevel))).xyz;
+    int coarser = max(uTextureLevel - 1, 0);
+    vec3 fineNormal = texture(uNormals, vec3(vDetailCoordinate.xy, float(uTextureLevel))).xyz;
     vec3 coarseNormal = texture(uNormals, vec3(vDetailCoordinate.zw, float(coarser))).xyz;
     vec3 normal = normalize(uEcefToView * mix(fineNormal, coarseNormal, vBlend));
     vec3 albedo = vec3(0.35);
     if (uHasColor) {
-        vec3 fine = texture(uColor, vec3(vDetailCoordinate.xy, float(uLevel))).rgb;
+        vec3 fine = texture(uColor, vec3(vDetailCoordinate.xy, float(uTextureLevel))).rgb;
         vec3 coarse = texture(uColor, vec3(vDetailCoordinate.zw, float(coarser))).rgb;
         albedo = mix(fine, coarse, vBlend);
     }
@@ -34,7 +34,7 @@ void main() {
     if (uOcean) {
         // Water where the (bilinear, hence smooth) height is below 0 m, anti-aliased
         // over one pixel's height change.
-        float height = mix(texture(uHeight, vec3(vHeightCoordinate.xy, float(uLevel))).r,
+        float height = mix(texture(uHeight, vec3(vHeightCoordinate.xy, float(uTextureLevel))).r,
                            texture(uHeight, vec3(vHeightCoordinate.zw, float(coarser))).r, vBlend);
         material = 1.0 - smoothstep(-0.5, 0.5, height / max(fwidth(height), 1e-3));
         normal = normalize(mix(normal, normalize(vUp), material));  // a calm sea surface

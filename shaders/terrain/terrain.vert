@@ -11,6 +11,10 @@ layout(location = 1) in float inSeam;   // +1 first column, -1 duplicated last c
 
 uniform sampler2DArray uHeight;
 uniform int uLevel;             // ring level i: uses clipmap levels i and i - 1
+// The clipmap level the ring samples: uLevel, or a coarser one while ring i's own level
+// is not resident yet (interactive frames after a jump): the ring then shows that level
+// alone (no blend), exactly as the coarser rings around it do at their shared border.
+uniform int uTextureLevel;
 uniform float uLevelScale;      // 2^-i
 uniform float uBearingSign;     // +1: bearing 0 is north; -1: south (viewer in the south)
 uniform mat3 uMeridianToView;   // viewer's meridian frame -> view space
@@ -26,7 +30,7 @@ layout(location = 4) out float vDistance;        // metres from the camera
 
 void main() {
     float theta = inVertex.x * uLevelScale;
-    float blend = inVertex.y;
+    float blend = uTextureLevel < uLevel ? 0.0 : inVertex.y;
     float sinBearing = inVertex.z * uBearingSign;
     float cosBearing = inVertex.w * uBearingSign;
     vec2 offset = mapOffset(theta, sinBearing, cosBearing);
@@ -37,10 +41,10 @@ void main() {
         offset.y = PI * inSeam * uBearingSign;
     }
 
-    int coarser = max(uLevel - 1, 0);
-    vec2 fine = clipmapCoordinate(uHeightLevels[uLevel], offset);
+    int coarser = max(uTextureLevel - 1, 0);
+    vec2 fine = clipmapCoordinate(uHeightLevels[uTextureLevel], offset);
     vec2 coarse = clipmapCoordinate(uHeightLevels[coarser], offset);
-    float heightFine = textureLod(uHeight, vec3(fine, float(uLevel)), 0.0).r;
+    float heightFine = textureLod(uHeight, vec3(fine, float(uTextureLevel)), 0.0).r;
     float heightCoarse = textureLod(uHeight, vec3(coarse, float(coarser)), 0.0).r;
     // Written so that blend == 1 gives the coarse value exactly: level borders match
     // the next coarser level's inner ring bit for bit (no cracks).
@@ -51,7 +55,7 @@ void main() {
 
     vec3 position = uMeridianToView * ecefOffset(offset, height) + uGroundToCamera;
     vHeightCoordinate = vec4(fine, coarse);
-    vDetailCoordinate = vec4(clipmapCoordinate(uDetailLevels[uLevel], offset),
+    vDetailCoordinate = vec4(clipmapCoordinate(uDetailLevels[uTextureLevel], offset),
                              clipmapCoordinate(uDetailLevels[coarser], offset));
     vBlend = blend;
     vUp = uMeridianToView * surfaceUp(offset);

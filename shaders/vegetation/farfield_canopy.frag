@@ -15,7 +15,7 @@ layout(location = 4) in float vDistance;
 
 uniform sampler2DArray uColor;    // cover layer: rgb linear albedo, a cover [0, 1]
 uniform sampler2DArray uNormals;  // normals of the combined elevation map (ECEF)
-uniform int uLevel;
+uniform int uTextureLevel;  // the clipmap level sampled (terrain.vert)
 uniform mat3 uEcefToView;
 uniform float uMinimumCover;      // below this the canopy is left to the terrain
 uniform float uAmbientOcclusion;  // the species' mean (G-buffer alpha, like the trees)
@@ -24,14 +24,14 @@ layout(location = 0) out vec4 outAlbedo;
 layout(location = 1) out vec4 outNormal;
 
 void main() {
-    int coarser = max(uLevel - 1, 0);
-    vec4 fine = texture(uColor, vec3(vDetailCoordinate.xy, float(uLevel)));
+    int coarser = max(uTextureLevel - 1, 0);
+    vec4 fine = texture(uColor, vec3(vDetailCoordinate.xy, float(uTextureLevel)));
     vec4 coarse = texture(uColor, vec3(vDetailCoordinate.zw, float(coarser)));
     vec4 cover = mix(fine, coarse, vBlend);
     if (cover.a < uMinimumCover || !farFieldCanopyPixel()) {
         discard;
     }
-    vec3 fineNormal = texture(uNormals, vec3(vDetailCoordinate.xy, float(uLevel))).xyz;
+    vec3 fineNormal = texture(uNormals, vec3(vDetailCoordinate.xy, float(uTextureLevel))).xyz;
     vec3 coarseNormal = texture(uNormals, vec3(vDetailCoordinate.zw, float(coarser))).xyz;
     vec3 normal = normalize(uEcefToView * mix(fineNormal, coarseNormal, vBlend));
     outAlbedo = vec4(cover.rgb, uAmbientOcclusion);

@@ -1,3 +1,4 @@
+#include "sylva/core/scheduler/FrameWantedSet.h"
 #include "sylva/core/scheduler/Scheduler.h"
 
 #include <gtest/gtest.h>
@@ -275,6 +276,98 @@ TEST(Scheduler, RequestsOfAnotherClientSurviveWantedListsWhileAskedFor) {
         terrainProduced.push_back(k.x);
     }
     EXPECT_EQ(terrainProduced, std::vector<int>{4});  // only the last frame's list
+}
+
+// Records what reaches the wrapped provider: setWanted lists and tryGet calls; tiles of
+// level 0 are "ready", the rest pending.
+class RecordingProvider final : public TileProvider {
+public:
+    Result<TilePointer> tile(const Source&, const TileKey&) override { return Error{"unused"}; }
+    const TileFormat& format() const override { return format_; }
+    TileLookup tryGet(const Source&, const TileKey& key, int) override {
+        ++tryGets;
+        if (key.level == 0) {
+            return {TileLookup::State::Ready, std::make_shared<ImageTile>(key, 8, 1, 1), {}};
+        }
+        return {};
+    }
+    void setWanted(const std::vector<TileRequest>& wanted) override { lists.push_back(wanted); }
+    std::vector<std::vector<TileRequest>> lists;
+    int tryGets = 0;
+
+private:
+    TileFormat format_{8, 1};
+};
+
+// One frame's clients (terrain list, canopy list, instance tiles by tryGet) reach the
+// provider as one list: deduplicated by (source, key) with the smallest priority, most
+// urgent first (ties in the order first asked for), ready tiles left out, and nothing
+// before flush().
+TEST(FrameWantedSet, MergesEveryClientOfAFrameIntoOneList) {
+    TestSource terrain("terrain", 1);
+    TestSource canopy("canopy", 2);
+    TestSource instances("instances", 3);
+    RecordingProvider provider;
+    FrameWantedSet frame(provider);
+    frame.setWanted({{&terrain, TileKey{3, 0, 0, 0}, 3}, {&terrain, TileKey{4, 0, 0, 0}, 4}});
+    EXPECT_EQ(frame.tryGet(terrain, TileKey{3, 0, 0, 0}, 3).state, TileLookup::State::Pending);
+    frame.setWanted({{&canopy, TileKey{3, 0, 0, 0}, 4}, {&terrain, TileKey{4, 0, 0, 0}, 2}});
+    EXPECT_EQ(frame.tryGet(instances, TileKey{5, 0, 1, 0}, 3).state, TileLookup::State::Pending);
+    EXPECT_EQ(frame.tryGet(instances, TileKey{0, 0, 1, 0}, 1).state, TileLookup::State::Ready);
+    EXPECT_TRUE(provider.lists.empty());  // nothing cancelled mid-frame
+    EXPECT_EQ(provider.tryGets, 3);       // answers come from the provider
+    frame.flush();
+    ASSERT_EQ(provider.lists.size(), 1u);
+    const std::vector<TileRequest>& list = provider.lists[0];
+    ASSERT_EQ(list.size(), 4u);
+    EXPECT_EQ(list[0].source, &terrain);  // level 4, priority lowered to 2 by the second ask
+    EXPECT_EQ(list[0].key, (TileKey{4, 0, 0, 0}));
+    EXPECT_EQ(list[0].priority, 2);
+    EXPECT_EQ(list[1].source, &terrain);  // priority 3, asked before the instance tile
+    EXPECT_EQ(list[1].key, (TileKey{3, 0, 0, 0}));
+    EXPECT_EQ(list[2].source, &instances);
+    EXPECT_EQ(list[2].priority, 3);
+    EXPECT_EQ(list[3].source, &canopy);
+    EXPECT_EQ(list[3].priority, 4);
+    frame.flush();  // a new frame starts empty
+    ASSERT_EQ(provider.lists.size(), 2u);
+    EXPECT_TRUE(provider.lists[1].empty());
+}
+
+// With the Scheduler: frame after frame the terrain, the canopy and the instance tiles
+// go through one FrameWantedSet; none cancels another's queued tiles (each clipmap's own
+// setWanted used to cancel the other's every frame), and the one worker runs them in the
+// merged priority order: the near instance tile (2), the terrain (3), the canopy (4).
+TEST(FrameWantedSet, NoClientCancelsAnotherAndTheSchedulerFollowsTheMergedOrder) {
+    TestSource running("running", 1);
+    Gate gate;
+    running.gate = &gate;
+    TestSource tiles("tiles", 2);  // one source, so one log shows the order across clients
+    Scheduler scheduler(options(1));
+    EXPECT_EQ(scheduler.tryGet(running, TileKey{2, 0, 1, 1}, 0).state, TileLookup::State::Pending);
+    gate.waitForWaiters(1);
+    const std::vector<TileRequest> terrainList = {{&tiles, TileKey{3, 0, 0, 0}, 3},
+                                                  {&tiles, TileKey{3, 0, 1, 0}, 3}};
+    const std::vector<TileRequest> canopyList = {{&tiles, TileKey{4, 0, 0, 0}, 4}};
+    for (int frameIndex = 0; frameIndex < 3; ++frameIndex) {
+        FrameWantedSet frame(scheduler);
+        frame.setWanted(terrainList);
+        frame.setWanted(canopyList);
+        EXPECT_EQ(frame.tryGet(tiles, TileKey{5, 0, 0, 0}, 2).state, TileLookup::State::Pending);
+        frame.flush();
+    }
+    for (int i = 0, steady = 0; i < 5000 && steady < 100; ++i) {
+        steady = scheduler.queuedTasks() == 4 ? steady + 1 : 0;
+        std::this_thread::sleep_for(1ms);
+    }
+    EXPECT_EQ(scheduler.queuedTasks(), 4u);
+    gate.open();
+    scheduler.waitIdle();
+    std::vector<int> levels;
+    for (const TileKey& k : tiles.log) {
+        levels.push_back(k.level);
+    }
+    EXPECT_EQ(levels, (std::vector<int>{5, 3, 3, 4}));
 }
 
 TEST(Scheduler, FailureIsReportedOnceAndRepeatedWithoutRetry) {

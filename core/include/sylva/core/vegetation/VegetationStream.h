@@ -65,6 +65,9 @@ public:
         const VegetationStreamSettings& settings);
 
     const VegetationStreamStatistics& statistics() const { return statistics_; }
+    // Forgets the cached batches (they hold only the species known when they were made):
+    // after a species' asset arrives, the next update rebuilds them with its plants.
+    void clear() { batches_.clear(); }
 
     // Scales `placement` by the growth of `seasons` on `date` (issue 21 item 3): the crown
     // fraction on every axis, the height over the crown fraction once more on the up axis

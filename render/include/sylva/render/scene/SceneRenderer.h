@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <future>
 #include <map>
 #include <memory>
 #include <optional>
@@ -19,6 +20,7 @@
 #include "sylva/core/scene/Camera.h"
 #include "sylva/core/seasons/PlantDate.h"
 #include "sylva/core/sources/graph/SourceGraph.h"
+#include "sylva/core/sources/plants/PlantModelSource.h"
 #include "sylva/core/vegetation/VegetationStream.h"
 #include "sylva/render/gl/Framebuffer.h"
 #include "sylva/render/objects/MeshRenderer.h"
@@ -88,6 +90,7 @@ struct Image {
 struct RenderStatistics {
     TerrainFrameStatistics terrain;
     double heightAboveTerrain = 0;     // metres
+    double groundHeight = 0;           // metres: the ground under the camera used
     double ev100 = 0;                  // the camera exposure used (set or metered)
     double gpuSeconds = 0;             // draw + shade (every sample) + read-back
     double terrainPassSeconds = 0;     // the terrain's G-buffer passes alone (to glFinish)
@@ -100,6 +103,12 @@ struct RenderStatistics {
     VegetationStreamStatistics vegetationStream;
     double farFieldPassSeconds = 0;  // the far-field canopy's G-buffer passes (to glFinish)
     FarFieldFrame farField;          // its hand-over distances and levels
+    // Interactive frames (waitForTiles false) never wait; what they did not have yet:
+    std::size_t pendingSpecies = 0;  // plant assets still being built (their plants not drawn)
+    int groundLevel = -1;            // ring level the nadir height came from (-1: last frame's)
+    // Anything wanted still arriving: terrain or canopy levels, instance tiles, plant
+    // assets, the nadir height of the finest level. False for batch frames.
+    bool pending = false;
 };
 
 class SceneRenderer {
@@ -119,6 +128,9 @@ public:
                                  const glm::dvec2& lensShift = glm::dvec2(0.0));
 
     const RenderStatistics& statistics() const { return statistics_; }
+    // Waits for the plant assets being built in the background (interactive frames start
+    // them); call before the source graphs they belong to are dropped.
+    void finishAssetBuilds();
     // Reversed-Z depth of the last render (0 = nothing drawn), rows top to bottom; and
     // the near plane distance (metres) it was rendered with: distance = near / depth.
     std::vector<float> depth() const { return gbuffer_.readDepth(); }
@@ -137,6 +149,11 @@ private:
     // that are ready to draw.
     Result<LevelRange> prepareTerrain(const TerrainLayers& layers, TileProvider& provider,
                                       const Camera& camera, const RenderSettings& settings);
+    // Interactive frames: the ground under the camera from the finest ring level whose tile
+    // is ready (the finer ones requested), else the last frame's; only the very first
+    // frame waits, for the coarsest level. Sets statistics_.groundLevel.
+    Result<double> readyGround(const TerrainLayers& layers, TileProvider& provider,
+                               const Camera& camera, const RenderSettings& settings);
     // The plants to draw: settings.instanceBatches and the streamed plants layers.
     Result<std::vector<const InstanceBatch*>> streamVegetation(const TerrainLayers& layers,
                                                                TileProvider& provider,
@@ -164,7 +181,13 @@ private:
     double meterEv100(const Camera& camera, double groundHeight, const RenderSettings& settings);
     // The stream layers of the scenario's plants sources; registers each species'
     // asset with the vegetation renderer on first use (building it may take seconds).
-    Result<std::vector<VegetationStreamLayer>> vegetationLayers(const TerrainLayers& layers);
+    // With `wait` false (interactive) an asset is built on a background thread and its
+    // species is left out (statistics_.pendingSpecies) until it is ready.
+    Result<std::vector<VegetationStreamLayer>> vegetationLayers(const TerrainLayers& layers,
+                                                                bool wait);
+    // The species index of `model`'s asset: registered now (wait), or once its background
+    // build finished; nothing while it is still building.
+    Result<std::optional<std::uint32_t>> speciesFor(const PlantModelSource& model, bool wait);
     // Makes the scenario's buildings and models near the camera resident (once per image).
     Status streamMeshes(const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
                         const RenderSettings& settings);
@@ -178,9 +201,12 @@ private:
     std::unique_ptr<MeshRenderer> meshes_;
     bool meshesStreamed_ = false;  // this image's scenario has mesh layers
     double groundHeight_ = 0;      // metres: the ground under the camera (prepareTerrain)
+    bool groundKnown_ = false;     // groundHeight_ was set by an earlier frame
     VegetationStream vegetationStream_;
     std::map<std::uint64_t, std::uint32_t> speciesOfModel_;  // model content hash -> species
     std::unique_ptr<AmbientOcclusionPass> ambientOcclusion_;
+    // Plant assets being built in the background, by model content hash.
+    std::map<std::uint64_t, std::future<Result<std::shared_ptr<const PlantAsset>>>> assetBuilds_;
     std::unique_ptr<ShadingPass> shading_;
     std::unique_ptr<SampleAccumulator> accumulator_;
     std::unique_ptr<ShadowMaps> shadowMaps_;

@@ -14,6 +14,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -43,6 +44,16 @@ struct TerrainSettings {
     // The G-buffer fragment shader (ShaderLibrary path); the far-field canopy draws the
     // same rings with its own (vegetation/farfield_canopy.frag).
     std::string fragmentShader = "terrain/terrain.frag";
+    // Interactive updates (update() with waitForAll false) keep every clipmap level from
+    // this one up to the finest wanted in the wanted list, so a coarse level is always
+    // resident: after a jump the rings whose own level is not ready yet are drawn from the
+    // finest ready one (never a hole), and only this root level is ever waited for (its
+    // few tiles, once). -1: no root; nothing is waited for and update() returns an empty
+    // range until the coarsest wanted level is ready (the far-field canopy, an overlay).
+    int residentLevel = 0;
+    // Added to the level as the tiles' priority (smaller first): the far-field canopy's
+    // tiles come after the terrain's of the same level.
+    int priorityOffset = 0;
 };
 
 struct TerrainFrameStatistics {
@@ -50,6 +61,9 @@ struct TerrainFrameStatistics {
     LevelRange wanted;      // levels the view asked for
     std::string degraded;   // why fewer levels were drawn than wanted (an error); empty if none
     int waitingLevel = -1;  // the first level not drawn because its tiles are still being produced
+    // The finest clipmap level resident for the camera: rings finer than it sample it
+    // (interactive frames after a jump; equals levels.finest otherwise).
+    int textureLevel = -1;
     std::uint64_t triangles = 0;
     std::uint64_t uploadedBytes = 0;
     double updateSeconds = 0;  // CPU clipmap update including tile evaluation
@@ -72,10 +86,14 @@ public:
     // ready; when a finer level's tiles are still pending (statistics().waitingLevel),
     // fail (a tile error) or the deadline passes, drawing stops at the last ready
     // level, whose fill disk then covers the nadir, so a missing level never leaves a
-    // hole. The coarsest wanted level (and its blend neighbour) is always waited for.
-    // `waitForAll` (batch rendering) waits for every level, so the image does not
-    // depend on thread timing. Returns the levels to draw (statistics().degraded says
-    // why fewer on error), or the error when not even the coarsest level could be made.
+    // hole. `waitForAll` (batch rendering) waits for every level, so the image does not
+    // depend on thread timing. Interactive (`waitForAll` false): nothing is waited for
+    // but the resident root level (TerrainSettings::residentLevel); every wanted ring is
+    // drawn, those finer than the finest resident level (statistics().textureLevel, at
+    // most one whose ground under the camera is below it) from that level. Returns the
+    // levels to draw (statistics().degraded says why fewer on error; empty, finest <
+    // coarsest, only without a root), or the error when not even the coarsest level
+    // could be made.
     Result<LevelRange> update(
         const TerrainLayers& layers, TileProvider& provider, const Camera& camera,
         const LevelRange& wanted,
@@ -110,6 +128,23 @@ private:
     // Sets the ring uniforms of `program` (terrain.vert) for `camera`, `rotation` (ECEF ->
     // the frame `projection` expects) and draws `levels` plus the fill disk; returns the
     // triangle count.
+    // One clipmap layer (height, normals, colour) with its texture and source.
+    struct LayerSlot {
+        Clipmap* clipmap;
+        ClipmapTexture* texture;
+        const Source* source;
+        int levelOffset;  // pyramid level = ring level - levelOffset
+    };
+    using LevelWindows = std::vector<std::pair<const LayerSlot*, ClipmapWindow>>;
+    using ReadyTiles = std::map<std::pair<std::uint64_t, TileKey>, TilePointer>;
+    // Looks up every tile of one level's `windows` (waiting for progress while some are
+    // pending and `wait`), keeping them in `ready`; when none is pending, brings the
+    // level's clipmaps to the windows and uploads the changed regions. Returns a tile's
+    // or the update's error; `pending` says some tile is still being produced.
+    Status bringUpLevel(int level, const LevelWindows& windows, TileProvider& provider, bool wait,
+                        ReadyTiles& ready, bool& pending);
+    // Drops the clipmap levels of layers whose source changed (another scenario, an edit).
+    void dropChangedSources(const TerrainLayers& layers);
     std::uint64_t drawRings(ShaderProgram& program, const Camera& camera,
                             const glm::dmat3& rotation, const glm::dmat4& projection,
                             const LevelRange& levels, bool ocean);
@@ -127,6 +162,7 @@ private:
     ClipmapTexture heightTexture_;
     ClipmapTexture colorTexture_;
     ClipmapTexture normalTexture_;
+    int textureCeiling_ = 0;  // finest resident level of the last update (statistics)
     std::uint64_t sourceHashes_[3] = {0, 0, 0};  // height, normals, colour sources of the clipmaps
     bool hasColor_ = false;
     TerrainFrameStatistics statistics_;

@@ -54,6 +54,7 @@ struct FarFieldFrame {
     double fadeEnd = 0.0;           // metres: the canopy has every pixel
     LevelRange levels;              // ring levels drawn
     bool drawn = false;             // false: no canopy this frame (no plants, no distance)
+    bool waiting = false;           // interactive: a wanted level's tiles are still pending
 };
 
 class FarFieldCanopy {

@@ -58,6 +58,8 @@ struct ViewerFrame {
     bool moved = false;       // the view changed since the previous frame
     int budgetLevel = 0;      // FrameBudget level used (0 = full detail)
     std::size_t instancesDrawn = 0;
+    int levelsDrawn = 0;   // finest terrain ring level drawn
+    int levelsWanted = 0;  // finest terrain ring level the view wants
     const Camera* camera = nullptr;
     const std::vector<float>* depth = nullptr;  // reversed-Z, rows top to bottom
     double near = 1.0;                          // distance = near / depth
