@@ -25,7 +25,9 @@
 
 #include "CommandLine.h"
 #include "Commands.h"
+#include "PhotoDeliverables.h"
 #include "ProjectSession.h"
+#include "sylva/core/model/BlockReader.h"
 #include "sylva/render/batch/BatchRenderer.h"
 
 namespace sylva::app {
@@ -344,6 +346,24 @@ int finish(const render::BatchSummary& summary, bool progressJson) {
     return 0;
 }
 
+// The photo blocks the selected views blocks name in `photos` (all views blocks without
+// --views), in the order named, each once.
+std::vector<std::string> photosOfViews(const ProjectModel& model, const std::string& only) {
+    std::vector<std::string> names;
+    for (const Block& views : model.views) {
+        if (!only.empty() && views.name != only) {
+            continue;
+        }
+        BlockReader reader(views, SchemaRegistry::builtin().find("views"));
+        for (const std::string& name : reader.references("photos")) {
+            if (std::find(names.begin(), names.end(), name) == names.end()) {
+                names.push_back(name);
+            }
+        }
+    }
+    return names;
+}
+
 }  // namespace
 
 int runRender(const std::vector<std::string>& arguments) {
@@ -383,6 +403,17 @@ int runRender(const std::vector<std::string>& arguments) {
     if (loaded.hasErrors() || !loaded.model) {
         return 1;
     }
+    // The views' photo blocks (`views { photos = [...] }`) are read with their photographs
+    // now, so a bad one stops the command before anything renders; they are made after a
+    // run that rendered the whole series (not a shard or a job range) without failures.
+    const std::vector<std::string> photoNames =
+        photosOfViews(*loaded.model, request.selection.views);
+    std::optional<std::vector<PlannedPhoto>> photos =
+        photoNames.empty() ? std::optional<std::vector<PlannedPhoto>>(std::vector<PlannedPhoto>{})
+                           : planPhotos(*loaded.model, photoNames, false);
+    if (!photos) {
+        return 1;
+    }
     render::BatchRenderer batch(request.options);
     if (Status set = batch.setProject(scenarioModels(std::move(loaded))); !set) {
         reportError(set.error().message);
@@ -408,7 +439,12 @@ int runRender(const std::vector<std::string>& arguments) {
         reportError(summary.error().message);
         return kExitTransient;
     }
-    return finish(summary.value(), request.progressJson);
+    const int status = finish(summary.value(), request.progressJson);
+    if (status != 0 || photos->empty() || !plan->wholeSeries()) {
+        return status;
+    }
+    nlohmann::ordered_json summaries = nlohmann::ordered_json::array();
+    return makePhotos(batch, *photos, request.selection.outputFolder, summaries) ? 0 : 1;
 }
 
 }  // namespace sylva::app

@@ -4,6 +4,21 @@
 
 namespace sylva {
 
+WirelineMasks WirelineMasks::fromDepths(const std::vector<float>& baseline,
+                                        const std::vector<float>& proposed, int width, int height) {
+    WirelineMasks masks;
+    masks.proposal = ProposalMask::fromDepths(baseline, proposed, width, height);
+    masks.silhouette = ProposalMask::outline(masks.proposal, width, height);
+    masks.skyline = ProposalMask::skyline(baseline, width, height);
+    return masks;
+}
+
+void Photomontage::drawWireline(RgbaImage& image, const WirelineMasks& masks,
+                                const WirelineStyle& style) {
+    drawLines(image, masks.skyline, style.skyline, style.width);
+    drawLines(image, masks.silhouette, style.silhouette, style.width);
+}
+
 RgbaImage Photomontage::composite(const RgbaImage& photo, const RgbaImage& render,
                                   const PixelMask& mask) {
     SYLVA_CHECK(photo.width == render.width && photo.height == render.height);

@@ -639,7 +639,12 @@ KindSchema viewsBlock() {
                     "NAME.json (the same metadata); the cameras need output_size and dpi."),
              listOf("sheet_size", ValueType::Number, Dimension::Length, false,
                     "Sheet page [width, height], e.g. [841mm, 297mm]; default: the image plus "
-                    "margins and the metadata block.")}};
+                    "margins and the metadata block."),
+             referenceList("photos", "photo", PortType::None, false,
+                           "Photo blocks made with this series by `sylva render` (their "
+                           "photomontage, wirelines and sheets, as `sylva montage` makes "
+                           "them, under --out) once every image of the series is written: a "
+                           "viewpoint pack from one command.")}};
 }
 
 KindSchema renderBlock() {

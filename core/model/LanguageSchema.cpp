@@ -51,19 +51,34 @@ KindSchema compareBlock() {
     split.minimum = 0.0;
     split.maximum = 1.0;
     split.defaultValue = number(0.5, Dimension::Ratio);
-    return {"compare",
-            "",
-            PortType::None,
-            "Two scenarios shown together, e.g. before and after a change.",
-            {scenarioReference("left", "Scenario on the left (or before)."),
-             scenarioReference("right", "Scenario on the right (or after)."), layout, split, [] {
-                 AttributeSchema labels = attribute("labels", ValueType::Bool,
-                                                    "Draw the scenario names into the image.");
-                 Value yes;
-                 yes.data = true;
-                 labels.defaultValue = yes;
-                 return labels;
-             }()}};
+    AttributeSchema mode = attribute(
+        "mode", ValueType::Word,
+        "images: the two scenarios' images shown together as `layout` says; wireline: the "
+        "outline of what `right` adds to `left` (by depth: buildings, objects, terrain "
+        "edits, hidden parts omitted) and the terrain skyline drawn as lines over `left`'s "
+        "image (LI TGN 06/19 Type 2); planar cameras, 8-bit outputs (.png) only.");
+    mode.words = {"images", "wireline"};
+    mode.defaultValue = word("images");
+    KindSchema schema{
+        "compare",
+        "",
+        PortType::None,
+        "Two scenarios shown together, e.g. before and after a change.",
+        {scenarioReference("left", "Scenario on the left (or before)."),
+         scenarioReference("right", "Scenario on the right (or after)."), layout, split,
+         [] {
+             AttributeSchema labels =
+                 attribute("labels", ValueType::Bool, "Draw the scenario names into the image.");
+             Value yes;
+             yes.data = true;
+             labels.defaultValue = yes;
+             return labels;
+         }(),
+         mode}};
+    for (AttributeSchema& wireline : wirelineAttributes()) {
+        schema.attributes.push_back(std::move(wireline));
+    }
+    return schema;
 }
 
 KindSchema blendBlock() {

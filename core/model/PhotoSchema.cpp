@@ -89,16 +89,6 @@ KindSchema photoBlock() {
     AttributeSchema time = attribute(
         "time", ValueType::DateTime,
         "When the photograph was taken (sets the sun); the render block's sun when absent.");
-    AttributeSchema color =
-        attribute("wireline_color", ValueType::Color, "Colour of the proposal's wireline (sRGB).");
-    Value red;
-    red.data = Color{1.0f, 0.1f, 0.1f, 1.0f};
-    color.defaultValue = red;
-    AttributeSchema skyline =
-        attribute("skyline_color", ValueType::Color, "Colour of the terrain skyline (sRGB).");
-    Value cyan;
-    cyan.data = Color{0.0f, 0.85f, 1.0f, 1.0f};
-    skyline.defaultValue = cyan;
     AttributeSchema solveFocal =
         attribute("solve_focal_length", ValueType::Bool,
                   "Also solve the focal length from the control points (needs 5 or more).");
@@ -109,7 +99,7 @@ KindSchema photoBlock() {
                   "size, the viewpoint's record and a location map (the camera needs "
                   "output_size and dpi).");
     sheet.defaultValue = flag(false);
-    return {
+    KindSchema schema{
         "photo",
         "",
         PortType::None,
@@ -123,11 +113,31 @@ KindSchema photoBlock() {
          controlPoints(), solveFocal,
          pixels("max_residual", 3.0, 0.1, 1000.0,
                 "The match fails when the control points' rms residual is above this."),
-         time, color, skyline,
-         pixels("line_width", 3.0, 1.0, 50.0, "Width of the wirelines in pixels."), output, sheet}};
+         time}};
+    for (AttributeSchema& attribute : wirelineAttributes()) {
+        schema.attributes.push_back(std::move(attribute));
+    }
+    schema.attributes.push_back(std::move(output));
+    schema.attributes.push_back(std::move(sheet));
+    return schema;
 }
 
 }  // namespace
+
+std::vector<AttributeSchema> wirelineAttributes() {
+    AttributeSchema color =
+        attribute("wireline_color", ValueType::Color, "Colour of the proposal's wireline (sRGB).");
+    Value red;
+    red.data = Color{1.0f, 0.1f, 0.1f, 1.0f};
+    color.defaultValue = red;
+    AttributeSchema skyline =
+        attribute("skyline_color", ValueType::Color, "Colour of the terrain skyline (sRGB).");
+    Value cyan;
+    cyan.data = Color{0.0f, 0.85f, 1.0f, 1.0f};
+    skyline.defaultValue = cyan;
+    return {color, skyline,
+            pixels("line_width", 3.0, 1.0, 50.0, "Width of the wirelines in pixels.")};
+}
 
 void addPhotoSchema(SchemaRegistry& registry) {
     registry.add(photoBlock());

@@ -16,6 +16,18 @@ std::array<std::uint8_t, 4> bytes(const Color& colour) {
     return {byte(colour.r), byte(colour.g), byte(colour.b), byte(colour.a)};
 }
 
+}  // namespace
+
+WirelineStyle wirelineStyleOf(const BlockReader& reader) {
+    WirelineStyle style;
+    style.width = reader.optionalNumber("line_width").value_or(3.0);
+    style.silhouette = bytes(reader.color("wireline_color").value_or(Color{1, 0.1f, 0.1f, 1}));
+    style.skyline = bytes(reader.color("skyline_color").value_or(Color{0, 0.85f, 1, 1}));
+    return style;
+}
+
+namespace {
+
 std::string format(const char* pattern, double value) {
     char text[64];
     std::snprintf(text, sizeof text, pattern, value);
@@ -101,9 +113,7 @@ Result<PhotoViewpoint> PhotoViewpoint::fromBlock(const ProjectModel& model, cons
     photo.baseline = reader.reference("baseline").value_or("");
     photo.solveFocalLength = reader.boolean("solve_focal_length", false);
     photo.maxResidual = reader.optionalNumber("max_residual").value_or(3.0);
-    photo.lineWidth = reader.optionalNumber("line_width").value_or(3.0);
-    photo.wirelineColour = bytes(reader.color("wireline_color").value_or(Color{1, 0.1f, 0.1f, 1}));
-    photo.skylineColour = bytes(reader.color("skyline_color").value_or(Color{0, 0.85f, 1, 1}));
+    photo.wireline = wirelineStyleOf(reader);
     photo.output = expandName(reader.string("output", "{name}"), block.name);
     photo.sheet = reader.boolean("sheet", false);
     const Block* camera = model.findCamera(photo.camera);

@@ -168,6 +168,8 @@ private:
     Status addComparisons(const Series& series, std::size_t firstImage,
                           const std::vector<Block>& blocks, RenderJobKind kind,
                           const char* firstName, const char* secondName);
+    // Whether comparison `block` is made for the viewpoint of `image` (wirelines: planar).
+    bool wirelineApplies(const Block& block, const RenderJob& image) const;
     // The number of images of a blend (`steps`, 1 without); sets its amount.
     Result<int> blendSteps(const Series& series, const Block& block, RenderJob& job) const;
     // Where a job goes: its file, or for videos a frame in the video's frames folder.
@@ -254,6 +256,21 @@ Status SeriesExpansion::addImages(const Series& series, const Viewpoint& viewpoi
     return {};
 }
 
+// A wireline comparison needs the depth buffers of one planar render per scenario; a
+// panorama (resampled from faces) has none, so its viewpoint gets no wireline image.
+bool SeriesExpansion::wirelineApplies(const Block& block, const RenderJob& image) const {
+    const Value* mode = BlockReader(block, nullptr).value("mode");
+    if (mode == nullptr || mode->get<Word>() == nullptr || mode->get<Word>()->text != "wireline" ||
+        image.camera.empty()) {
+        return true;
+    }
+    const Block* camera = model_.findCamera(image.camera);
+    const Value* projection =
+        camera != nullptr ? BlockReader(*camera, nullptr).value("projection") : nullptr;
+    return projection == nullptr || projection->get<Word>() == nullptr ||
+           projection->get<Word>()->text == "planar";
+}
+
 Status SeriesExpansion::addComparisons(const Series& series, std::size_t firstImage,
                                        const std::vector<Block>& blocks, RenderJobKind kind,
                                        const char* firstName, const char* secondName) {
@@ -274,7 +291,7 @@ Status SeriesExpansion::addComparisons(const Series& series, std::size_t firstIm
         }
         std::optional<std::size_t> a = imageOf(*first);
         std::optional<std::size_t> b = imageOf(*second);
-        if (!a || !b) {
+        if (!a || !b || (kind == RenderJobKind::Compare && !wirelineApplies(block, images_[*a]))) {
             continue;
         }
         if (series.pattern.find("{scenario}") == std::string::npos) {

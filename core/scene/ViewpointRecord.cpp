@@ -134,6 +134,12 @@ ViewpointRecord ViewpointRecord::describe(const Camera& camera, const ViewpointI
         list.number("proposal_extent_deg", "Horizontal extent of the proposal", "%.2f°",
                     *inputs.proposalExtent / kDegree);
     }
+    if (inputs.proposalLeftBearing && inputs.proposalRightBearing) {
+        list.number("proposal_from_deg", "Proposal seen from bearing", "%.2f°",
+                    *inputs.proposalLeftBearing / kDegree);
+        list.number("proposal_to_deg", "Proposal seen to bearing", "%.2f°",
+                    *inputs.proposalRightBearing / kDegree);
+    }
     if (inputs.matchRms) {
         list.number("match_rms_px", "Camera match rms residual", "%.2f px", *inputs.matchRms);
     }

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <set>
 #include <utility>
 
 #include "sylva/core/base/Check.h"
@@ -29,6 +30,18 @@ bool outOfSpace(const std::filesystem::path& output, std::size_t bytes, const st
     const std::filesystem::path folder = output.has_parent_path() ? output.parent_path() : ".";
     return ::statvfs(folder.c_str(), &filesystem) == 0 &&
            static_cast<std::uint64_t>(filesystem.f_bavail) * filesystem.f_frsize < bytes;
+}
+
+// The image jobs whose depth buffers a wireline comparison of the run needs.
+std::set<std::size_t> depthsWanted(const BatchPlan& plan) {
+    std::set<std::size_t> wanted;
+    for (const RenderJob& job : plan.jobs()) {
+        if (job.kind == RenderJobKind::Compare && SeriesAssembler::isWireline(plan, job)) {
+            wanted.insert(job.first);
+            wanted.insert(job.second);
+        }
+    }
+    return wanted;
 }
 
 }  // namespace
@@ -180,6 +193,9 @@ Result<BatchSummary> BatchRenderer::run(BatchPlan& plan, BatchListener& listener
 }
 
 Status BatchRenderer::renderImages(BatchRun& run) {
+    // A wireline's depth buffers live in memory only: its images are rendered again on
+    // --resume even when current.
+    const std::set<std::size_t> depths = depthsWanted(run.plan());
     for (const RenderJob& job : run.plan().jobs()) {
         if (job.kind != RenderJobKind::Image) {
             continue;
@@ -187,10 +203,11 @@ Status BatchRenderer::renderImages(BatchRun& run) {
         if (run.cancelled() || run.stoppedTransiently()) {
             return {};
         }
-        if (run.skipIfCurrent(job)) {
+        const bool keepDepth = depths.count(job.index) != 0;
+        if (!keepDepth && run.skipIfCurrent(job)) {
             continue;
         }
-        if (Status rendered = renderImage(run, job); !rendered) {
+        if (Status rendered = renderImage(run, job, keepDepth); !rendered) {
             return rendered;
         }
     }
@@ -199,7 +216,7 @@ Status BatchRenderer::renderImages(BatchRun& run) {
 
 // One Image job: camera and sun, render, write, record. Only a renderer that cannot be
 // made is an error here; the job's own failures are reported through the run.
-Status BatchRenderer::renderImage(BatchRun& run, const RenderJob& job) {
+Status BatchRenderer::renderImage(BatchRun& run, const RenderJob& job, bool keepDepth) {
     const auto start = std::chrono::steady_clock::now();
     const BatchPlan& plan = run.plan();
     const RenderSetup& setup = plan.setup();
@@ -243,18 +260,14 @@ Status BatchRenderer::renderImage(BatchRun& run, const RenderJob& job) {
         run.fail(job, what + ": " + image.error().message);
         return {};
     }
+    if (keepDepth) {  // a planar camera (ViewSeries makes wirelines of no panorama)
+        run.keepDepth(job.index, {renderer.value()->depth(), renderer.value()->near()});
+    }
     ImageMetadata metadata = plan.metadataFor(job);
-    const std::optional<ViewpointRecord> record =
-        ViewpointOutput::record(plan, job, camera, image.value().width, image.value().height);
+    const std::optional<ViewpointRecord> record = ViewpointOutput::record(
+        plan, job, camera, image.value().width, image.value().height, tiles);
     if (record) {
         record->addTo(metadata);
-    }
-    if (sheet.value()) {  // before the image, which moves its radiance out
-        if (Status written = ViewpointOutput::writeSheet(plan, job, camera, image.value(), *record);
-            !written) {
-            run.fail(job, written.error().message);
-            return {};
-        }
     }
     if (Status written = ImageOutput::write(job.output, image.value(), metadata); !written) {
         const std::size_t bytes = static_cast<std::size_t>(image.value().width) *
@@ -266,6 +279,18 @@ Status BatchRenderer::renderImage(BatchRun& run, const RenderJob& job) {
             run.fail(job, written.error().message);
         }
         return {};
+    }
+    // The sheet only after its image is written (the sheet shows that file; the image
+    // write moved only the radiance out, the sheet reads the 8-bit pixels). A sheet that
+    // fails takes its image with it: the job failed, nothing half-written is left.
+    if (sheet.value()) {
+        if (Status written = ViewpointOutput::writeSheet(plan, job, camera, image.value(), *record);
+            !written) {
+            std::error_code ignored;
+            std::filesystem::remove(job.output, ignored);
+            run.fail(job, written.error().message);
+            return {};
+        }
     }
     JobReport report;
     report.job = &job;

@@ -9,6 +9,7 @@
 #include "sylva/core/model/BlockReader.h"
 #include "sylva/core/scene/LocationMap.h"
 #include "sylva/render/batch/JobView.h"
+#include "sylva/render/batch/ViewpointOutput.h"
 
 namespace sylva::render {
 namespace {
@@ -59,16 +60,16 @@ Status solveCamera(const ProjectModel& model, const PhotoViewpoint& photo, const
 void makeImages(const PhotoViewpoint& photo, const Photo& picture, DepthRender& baseline,
                 DepthRender& proposed, PhotomontageResult& result) {
     const int width = picture.image.width, height = picture.image.height;
-    result.proposal = ProposalMask::fromDepths(baseline.depth, proposed.depth, width, height);
-    result.silhouette = ProposalMask::outline(result.proposal, width, height);
-    result.skyline = ProposalMask::skyline(baseline.depth, width, height);
-    result.montage = Photomontage::composite(picture.image, proposed.image, result.proposal);
+    WirelineMasks masks = WirelineMasks::fromDepths(baseline.depth, proposed.depth, width, height);
+    result.montage = Photomontage::composite(picture.image, proposed.image, masks.proposal);
     result.wireline = picture.image;
     result.model = std::move(baseline.image);
     for (RgbaImage* image : {&result.wireline, &result.model}) {
-        Photomontage::drawLines(*image, result.skyline, photo.skylineColour, photo.lineWidth);
-        Photomontage::drawLines(*image, result.silhouette, photo.wirelineColour, photo.lineWidth);
+        Photomontage::drawWireline(*image, masks, photo.wireline);
     }
+    result.proposal = std::move(masks.proposal);
+    result.silhouette = std::move(masks.silhouette);
+    result.skyline = std::move(masks.skyline);
     result.proposed = std::move(proposed.image);
 }
 
@@ -200,9 +201,13 @@ ViewpointRecord PhotomontageRenderer::record(BatchRenderer& batch, const PhotoVi
     char text[20];
     std::snprintf(text, sizeof text, "%016" PRIx64, hash.value());
     inputs.projectHash = text;
-    if (result.extent) {
-        inputs.proposalDistance = result.extent->nearestDistance;
-        inputs.proposalExtent = result.extent->horizontalExtent;
+    // The proposal's distance and extent from its geometry, as in every viewpoint record
+    // (the visible part's, measured on the render, is in the montage's JSON summary).
+    if (Result<RenderSetup> setup = batch.setup()) {
+        if (Result<TerrainLayers> layers = batch.project().terrainLayers(photo.scenario)) {
+            ViewpointOutput::addProposal(result.camera, layers->meshes,
+                                         batch.scheduler(setup.value()), inputs);
+        }
     }
     if (result.match) {
         inputs.matchRms = result.match->rms;

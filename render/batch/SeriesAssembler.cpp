@@ -11,8 +11,10 @@
 #include "sylva/core/image/ContactSheet.h"
 #include "sylva/core/image/ImageComparison.h"
 #include "sylva/core/image/ImageWriter.h"
+#include "sylva/core/image/Photomontage.h"
 #include "sylva/core/image/ToneMapping.h"
 #include "sylva/core/model/BlockReader.h"
+#include "sylva/core/scene/PhotoViewpoint.h"
 #include "sylva/render/batch/VideoEncoder.h"
 
 namespace sylva::render {
@@ -141,10 +143,76 @@ void SeriesAssembler::encode(const RenderJob& job) {
     run_.done(report);
 }
 
+bool SeriesAssembler::isWireline(const BatchPlan& plan, const RenderJob& job) {
+    if (job.kind != RenderJobKind::Compare) {
+        return false;
+    }
+    const Value* mode = BlockReader(plan.comparisonBlock(job), nullptr).value("mode");
+    return mode != nullptr && mode->get<Word>() != nullptr && mode->get<Word>()->text == "wireline";
+}
+
+void SeriesAssembler::composeWireline(const RenderJob& job, const Block& block) {
+    const auto start = std::chrono::steady_clock::now();
+    const BatchPlan& plan = run_.plan();
+    const std::string where =
+        block.location.toString() + ": compare '" + block.name + "' (mode = wireline): ";
+    if (ImageWriter::isExr(job.output)) {
+        run_.fail(job, where +
+                           "wirelines are drawn in 8-bit sRGB; give the views an output "
+                           "template ending in .png");
+        return;
+    }
+    const BatchRun::Depth* left = run_.depthOf(job.first);
+    const BatchRun::Depth* right = run_.depthOf(job.second);
+    Result<RgbaImage> image = readDisplayed(plan.job(job.first).output);
+    if (left == nullptr || right == nullptr || !image) {
+        run_.fail(job,
+                  job.output.string() + ": not drawn: " +
+                      (image ? std::string("the depth of the images it compares is not in this run "
+                                           "(one failed, or they were rendered by another "
+                                           "process: a wireline is made in the run that "
+                                           "renders its images)")
+                             : image.error().message));
+        return;
+    }
+    const std::size_t pixels = static_cast<std::size_t>(image->width) * image->height;
+    if (left->depth.size() != pixels || right->depth.size() != pixels) {
+        run_.fail(job, where + "the two scenarios were rendered at different sizes");
+        return;
+    }
+    // depth = near / distance: the right render's depths on the left render's near plane.
+    std::vector<float> proposed = right->depth;
+    for (float& depth : proposed) {
+        depth = static_cast<float>(depth * (left->near / right->near));
+    }
+    const WirelineMasks masks =
+        WirelineMasks::fromDepths(left->depth, proposed, image->width, image->height);
+    const BlockReader reader(block, SchemaRegistry::builtin().find(block.keyword));
+    Photomontage::drawWireline(image.value(), masks, wirelineStyleOf(reader));
+    if (Status written = ImageWriter::writeRgba8(job.output, image->width, image->height,
+                                                 image->pixels, plan.metadataFor(job));
+        !written) {
+        run_.fail(job, written.error().message);
+        return;
+    }
+    JobReport report;
+    report.job = &job;
+    report.seconds = run_.record(job, start);
+    report.width = image->width;
+    report.height = image->height;
+    report.firstScenario = plan.job(job.first).scenario;
+    report.secondScenario = plan.job(job.second).scenario;
+    run_.done(report);
+}
+
 void SeriesAssembler::compose(const RenderJob& job) {
     const auto start = std::chrono::steady_clock::now();
     const BatchPlan& plan = run_.plan();
     const Block& block = plan.comparisonBlock(job);
+    if (isWireline(plan, job)) {
+        composeWireline(job, block);
+        return;
+    }
     BlockReader reader(block, SchemaRegistry::builtin().find(block.keyword));
     const std::string& firstName = plan.job(job.first).scenario;
     const std::string& secondName = plan.job(job.second).scenario;

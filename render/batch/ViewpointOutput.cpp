@@ -1,5 +1,6 @@
 #include "sylva/render/batch/ViewpointOutput.h"
 
+#include "sylva/core/analysis/ProposalReach.h"
 #include "sylva/core/base/AtomicFile.h"
 #include "sylva/core/model/BlockReader.h"
 #include "sylva/core/scene/ViewpointSheet.h"
@@ -39,9 +40,26 @@ Result<bool> ViewpointOutput::wantsSheet(const BatchPlan& plan, const RenderJob&
     return true;
 }
 
+void ViewpointOutput::addProposal(const Camera& camera,
+                                  const std::vector<const MeshSource*>& meshes, TileProvider& tiles,
+                                  ViewpointInputs& inputs) {
+    if (meshes.empty()) {
+        return;
+    }
+    Result<ProposalParts> parts = ProposalReach::partsOf(meshes, tiles);
+    const std::optional<ProposalReach> reach =
+        parts ? ProposalReach::measure(camera.geodetic, parts.value()) : std::nullopt;
+    if (reach) {
+        inputs.proposalDistance = reach->nearestDistance;
+        inputs.proposalExtent = reach->horizontalExtent;
+        inputs.proposalLeftBearing = reach->leftBearing;
+        inputs.proposalRightBearing = reach->rightBearing;
+    }
+}
+
 std::optional<ViewpointRecord> ViewpointOutput::record(const BatchPlan& plan, const RenderJob& job,
-                                                       const Camera& camera, int width,
-                                                       int height) {
+                                                       const Camera& camera, int width, int height,
+                                                       TileProvider& tiles) {
     if (job.camera.empty()) {
         return std::nullopt;
     }
@@ -62,6 +80,7 @@ std::optional<ViewpointRecord> ViewpointOutput::record(const BatchPlan& plan, co
     for (const Source* plants : layers.plants) {
         addSource(plants, inputs.dataSources);
     }
+    addProposal(camera, layers.meshes, tiles, inputs);
     inputs.version = SYLVA_VERSION;
     const ImageMetadata metadata = plan.metadataFor(job);
     if (const std::string* hash = metadata.find("sylva:project_hash")) {
@@ -97,6 +116,9 @@ Status ViewpointOutput::writeSheet(const BatchPlan& plan, const RenderJob& job,
     }
     const std::filesystem::path json = beside(job.output, ".json");
     if (Status written = writeFileAtomically(json, record.json()); !written) {
+        std::error_code ignored;  // the sheet without its record is half a deliverable
+        std::filesystem::remove(beside(job.output, ".sheet.pdf"), ignored);
+        std::filesystem::remove(beside(job.output, ".sheet.png"), ignored);
         return Error{json.string() + ": " + written.error().message};
     }
     return {};

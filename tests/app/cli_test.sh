@@ -429,4 +429,46 @@ expect_rc 2
 expect_stderr "montage needs exactly one project file"
 end
 
+# --- a viewpoint pack from one command (issue 18) ---------------------------------
+# The pack project at 161 x 51 pixels (its cameras' print format at 50 dpi: fast); the
+# stand-in photograph is rendered by Sylva first (no real photograph exists).
+PACK=$SCRATCH/pack
+mkdir -p "$PACK/photos"
+cp "$PROJECTS/pack.sylva" "$PROJECTS/pack_proposal.geojson" "$PACK/"
+
+begin "pack: the stand-in photograph renders"
+run render "$PACK/pack.sylva" --views standin --out "$PACK/standin" --gl egl
+expect_rc 0
+cp "$PACK/standin/vp_standin.png" "$PACK/photos/vp.png" 2>/dev/null || fail "no stand-in"
+end
+
+begin "pack: one command writes every deliverable"
+run render "$PACK/pack.sylva" --views pack --out "$PACK/out" --gl egl
+expect_rc 0
+for file in vp_today.png vp_proposed.png vp_wireline.png vp_pano_today.png vp_pano_proposed.png \
+    vp_today.sheet.pdf vp_today.sheet.png vp_today.json vp_proposed.sheet.pdf \
+    vp_pano_today.sheet.pdf vp_pano_proposed.sheet.png vp_pano_proposed.json \
+    vp_photo_montage.png vp_photo_wireline.png vp_photo_model.png vp_photo.json \
+    vp_photo.sheet.pdf vp_photo.sheet.png vp_photo_map.png; do
+    [ -s "$PACK/out/viewpoints/$file" ] || fail "missing viewpoints/$file"
+done
+[ ! -e "$PACK/out/viewpoints/vp_pano_wireline.png" ] || fail "a panorama got a wireline"
+grep -q '"proposal_distance_m"' "$PACK/out/viewpoints/vp_proposed.json" 2>/dev/null ||
+    fail "the proposed sheet's record lacks the proposal's distance"
+grep -q '"proposal_distance_m"' "$PACK/out/viewpoints/vp_today.json" 2>/dev/null &&
+    fail "the baseline's record has a proposal"
+if command -v pdfinfo >/dev/null; then
+    pdfinfo "$PACK/out/viewpoints/vp_photo.sheet.pdf" | grep -q '^Pages: *1' ||
+        fail "the photomontage sheet is no one-page PDF"
+fi
+end
+
+begin "pack: a photo block without its photograph stops before anything renders"
+rm "$PACK/photos/vp.png"
+run render "$PACK/pack.sylva" --views pack --out "$PACK/broken" --gl egl
+expect_rc 1
+expect_stderr "pack.sylva:46:12: photo 'vp_photo': $PACK/photos/vp.png: the photograph does not exist"
+expect_no_png "$PACK/broken"
+end
+
 finish

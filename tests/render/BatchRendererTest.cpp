@@ -405,5 +405,30 @@ TEST(BatchRenderer, CylindricalViewpointWithSheetFromTheProjectFile) {
     EXPECT_FALSE(std::filesystem::exists(selection.outputFolder / "plain.png"));
 }
 
+// A sheet is written only after its image: when the image cannot be written (here a
+// folder stands where the PNG goes), the job fails and neither the sheet nor its JSON
+// record is left beside the missing image.
+TEST(BatchRenderer, NoSheetWhenTheImageWriteFails) {
+    BatchRenderer batch;
+    ASSERT_TRUE(batch.setProject(
+        load("source height : constant { height = 200m }\n"
+             "source colour : constant { kind = image; color = #4a7a3a }\n"
+             "scenario today { layers = [@height, @colour] }\n"
+             "camera vp1 { position = geo(10deg, 20deg); eye_height = 50m; heading = 90deg\n"
+             "    horizontal_fov = 60deg; output_size = [100mm, 30mm]; dpi = 50 }\n"
+             "render { resolution = [32px, 18px]; atmosphere = false }\n"
+             "views pack { cameras = [@vp1]; output = \"{camera}.png\"; sheet = true }\n")));
+    BatchSelection selection;
+    selection.outputFolder = scratch("sheet_image_fails");
+    std::filesystem::create_directories(selection.outputFolder / "vp1.png" / "blocker");
+    Recorder recorder;
+    const BatchSummary summary = runSeries(batch, selection, recorder);
+    EXPECT_EQ(summary.failed, 1);
+    ASSERT_FALSE(recorder.errors.empty());
+    for (const char* file : {"vp1.sheet.pdf", "vp1.sheet.png", "vp1.json"}) {
+        EXPECT_FALSE(std::filesystem::exists(selection.outputFolder / file)) << file;
+    }
+}
+
 }  // namespace
 }  // namespace sylva::render

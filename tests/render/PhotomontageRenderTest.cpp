@@ -9,11 +9,15 @@
 //    known camera (baseline only), control points projected from that camera, a camera
 //    block guessed 1.2° off: the matched camera is within 0.05° of the truth and the
 //    photomontage equals the proposed scenario rendered directly from the true camera
-//    (RMSE ≤ 2 code values), and the files are written; a failing photo writes nothing.
+//    (RMSE ≤ 2 code values), and the files are written; a failing photo writes nothing;
+//  - `compare { mode = wireline }` in a views series: every line pixel lies within 1 px of
+//    the boundary of the proposal as the two scenario images show it (the pixels where
+//    they differ), and nearly all of that boundary has a line pixel within 1 px.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -421,6 +425,124 @@ TEST(PhotomontageFixture, MatchedMontageEqualsTheProposalRenderedFromTheTrueCame
     ASSERT_TRUE(ImageWriter::writeRgba8(
         fs::path(SYLVA_TEST_OUTPUT_DIR) / "photomontage_fixture_wireline.png", kWidth, kHeight,
         matched->result.wireline.pixels));
+}
+
+class WirelineListener final : public BatchListener {
+public:
+    void jobDone(const JobReport&) override {}
+    void error(const std::string& message) override { errors.push_back(message); }
+    std::vector<std::string> errors;
+};
+
+RgbaImage readImage(const fs::path& path) {
+    RgbaImage image;
+    Result<std::vector<std::uint8_t>> pixels =
+        ImageWriter::readRgba8(path, image.width, image.height);
+    EXPECT_TRUE(pixels) << path;
+    if (pixels) {
+        image.pixels = std::move(pixels.value());
+    }
+    return image;
+}
+
+TEST(CompareWireline, LinesLieOnTheBoundaryOfTheProposal) {
+    writeGeoJson("proposal.geojson", box(1, 0, 0, 15, 24));
+    const glm::dvec2 p = lonLat(-140.0, -140.0);
+    char camera[256];
+    std::snprintf(camera, sizeof camera,
+                  "camera vp { position = geo(%.10fdeg, %.10fdeg); eye_height = 30m; heading = "
+                  "45deg; pitch = -2deg; fov = 30deg }\n",
+                  p.y, p.x);
+    const fs::path file = folder() / "compare.sylva";
+    std::ofstream(file)
+        << "source ground : constant { kind = elevation; height = 100m }\n"
+           "source colour : constant { kind = image; color = #7a8a5a }\n"
+           "source normals : normal_map { height = @ground }\n"
+           "source footprints : features { file = \"proposal.geojson\" }\n"
+           "source proposal : buildings { features = @footprints; elevation = @ground; "
+           "height_attribute = \"h\" }\n"
+           "scenario today { layers = [@ground, @colour, @normals] }\n"
+           "scenario proposed { layers = [@ground, @colour, @normals, @proposal] }\n"
+        << camera
+        << "render { resolution = [320px, 180px]; shadows = false; atmosphere = false; ev100 = "
+           "12 }\n"
+           "compare wire { left = @today; right = @proposed; mode = wireline\n"
+           "    wireline_color = #ff0000; skyline_color = #00ffff; line_width = 1px }\n"
+           "views pack { cameras = [@vp]; scenarios = [@today, @proposed]\n"
+           "    output = \"{camera}_{scenario}.png\" }\n";
+    dsl::LoadResult loaded = dsl::loadProject(file);
+    ASSERT_EQ(loaded.render(), "");
+    ASSERT_TRUE(loaded.model);
+    BatchRenderer batch(BatchOptions{});
+    ASSERT_TRUE(batch.setProject(std::move(loaded.scenarios)));
+    BatchSelection selection;
+    selection.outputFolder = folder() / "compare_out";
+    Result<BatchPlan> plan = batch.plan(selection);
+    ASSERT_TRUE(plan) << plan.error().message;
+    WirelineListener listener;
+    Result<BatchSummary> summary = batch.run(plan.value(), listener);
+    ASSERT_TRUE(summary) << summary.error().message;
+    ASSERT_TRUE(listener.errors.empty()) << listener.errors.front();
+    EXPECT_EQ(summary->failed, 0);
+    const RgbaImage today = readImage(selection.outputFolder / "vp_today.png");
+    const RgbaImage proposed = readImage(selection.outputFolder / "vp_proposed.png");
+    const RgbaImage wire = readImage(selection.outputFolder / "vp_wire.png");
+    ASSERT_EQ(wire.width, kWidth);
+    ASSERT_EQ(today.width, kWidth);
+    ASSERT_EQ(proposed.width, kWidth);
+    // The proposal as the images show it: where the two scenarios' pixels differ.
+    PixelMask shown(std::size_t(kWidth) * kHeight, 0);
+    for (std::size_t i = 0; i < shown.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            if (std::abs(int(today.pixels[i * 4 + c]) - int(proposed.pixels[i * 4 + c])) > 2)
+                shown[i] = 1;
+    auto inside = [&](int x, int y) {
+        return x >= 0 && y >= 0 && x < kWidth && y < kHeight && shown[std::size_t(y) * kWidth + x];
+    };
+    // Within one pixel: at the proposal's foot the depths differ by less than the mask's
+    // tolerance (0.1 % of the distance) while the colours already differ.
+    auto isBoundary = [&](int x, int y) {
+        return inside(x, y) &&
+               (!inside(x - 1, y) || !inside(x + 1, y) || !inside(x, y - 1) || !inside(x, y + 1));
+    };
+    auto isRed = [&](int x, int y) {
+        if (x < 0 || y < 0 || x >= kWidth || y >= kHeight)
+            return false;
+        const std::uint8_t* w = &wire.pixels[(std::size_t(y) * kWidth + x) * 4];
+        return w[0] == 255 && w[1] == 0 && w[2] == 0;
+    };
+    auto near = [&](int x, int y, auto&& test) {
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx)
+                if (test(x + dx, y + dy))
+                    return true;
+        return false;
+    };
+    std::size_t red = 0, offBoundary = 0, boundary = 0, drawn = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            red += isRed(x, y);
+            offBoundary += isRed(x, y) && !near(x, y, isBoundary);
+            boundary += isBoundary(x, y);
+            drawn += isBoundary(x, y) && near(x, y, isRed);
+        }
+    std::printf(
+        "wireline compare: %zu red pixels, %zu off the boundary; %zu of %zu boundary "
+        "pixels drawn\n",
+        red, offBoundary, drawn, boundary);
+    EXPECT_GT(red, 100u);
+    EXPECT_EQ(offBoundary, 0u);
+    EXPECT_GE(double(drawn), 0.98 * double(boundary));
+    // Away from the lines the wireline image is the left (today) image.
+    std::size_t changed = 0;
+    for (std::size_t i = 0; i < shown.size(); ++i) {
+        const bool line = (wire.pixels[i * 4] == 255 && wire.pixels[i * 4 + 1] == 0) ||
+                          (wire.pixels[i * 4] == 0 && wire.pixels[i * 4 + 1] == 255);
+        changed += !line && std::memcmp(&wire.pixels[i * 4], &today.pixels[i * 4], 3) != 0;
+    }
+    EXPECT_EQ(changed, 0u);
+    ASSERT_TRUE(ImageWriter::writeRgba8(fs::path(SYLVA_TEST_OUTPUT_DIR) / "compare_wireline.png",
+                                        kWidth, kHeight, wire.pixels));
 }
 
 }  // namespace

@@ -6,11 +6,30 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "sylva/core/image/Image.h"
 #include "sylva/core/image/ProposalMask.h"
 
 namespace sylva {
+
+// How wirelines are drawn (the photo block's and `compare { mode = wireline }`'s
+// wireline_color, skyline_color and line_width).
+struct WirelineStyle {
+    std::array<std::uint8_t, 4> silhouette{255, 26, 26, 255};  // the proposal's outline, sRGB
+    std::array<std::uint8_t, 4> skyline{0, 217, 255, 255};     // the terrain skyline, sRGB
+    double width = 3.0;                                        // pixels, >= 1
+};
+
+// The masks of a wireline, from the baseline's and the proposed scenario's depth buffers of
+// one camera (ProposalMask's conventions): the proposal's visible pixels, their outline,
+// the baseline's skyline.
+struct WirelineMasks {
+    PixelMask proposal, silhouette, skyline;
+
+    static WirelineMasks fromDepths(const std::vector<float>& baseline,
+                                    const std::vector<float>& proposed, int width, int height);
+};
 
 class Photomontage {
 public:
@@ -22,6 +41,10 @@ public:
     // `colour` (sRGB, alpha 255 opaque). Width 1 draws the pixels themselves.
     static void drawLines(RgbaImage& image, const PixelMask& lines,
                           const std::array<std::uint8_t, 4>& colour, double width);
+    // A wireline image: the skyline, then the proposal's silhouette over it, drawn into
+    // `image` (the photograph: a photowire; the baseline render: TGN Type 2).
+    static void drawWireline(RgbaImage& image, const WirelineMasks& masks,
+                             const WirelineStyle& style);
 };
 
 }  // namespace sylva

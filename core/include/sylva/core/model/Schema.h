@@ -108,5 +108,8 @@ void addObjectsSchema(SchemaRegistry& registry);
 void addSeasonsSchema(SchemaRegistry& registry);
 // The `photo` block of photomontages (PhotoSchema.cpp).
 void addPhotoSchema(SchemaRegistry& registry);
+// wireline_color, skyline_color and line_width: the photo block's and the wireline
+// compare's (PhotoSchema.cpp).
+std::vector<AttributeSchema> wirelineAttributes();
 
 }  // namespace sylva

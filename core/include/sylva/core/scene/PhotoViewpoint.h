@@ -21,12 +21,18 @@
 
 #include "sylva/core/base/Result.h"
 #include "sylva/core/image/PhotoReader.h"
+#include "sylva/core/image/Photomontage.h"
+#include "sylva/core/model/BlockReader.h"
 #include "sylva/core/model/ProjectModel.h"
 #include "sylva/core/scene/Camera.h"
 #include "sylva/core/scene/CameraMatcher.h"
 #include "sylva/core/scene/DateTime.h"
 
 namespace sylva {
+
+// The wireline_color, skyline_color and line_width of a photo block or a wireline compare
+// block (the schema's defaults when absent).
+WirelineStyle wirelineStyleOf(const BlockReader& reader);
 
 class PhotoViewpoint {
 public:
@@ -46,10 +52,8 @@ public:
     std::vector<ControlPoint> controlPoints;
     bool solveFocalLength = false;
     double maxResidual = 3.0;  // pixels
-    std::array<std::uint8_t, 4> wirelineColour{255, 26, 26, 255};
-    std::array<std::uint8_t, 4> skylineColour{0, 217, 255, 255};
-    double lineWidth = 3.0;  // pixels
-    std::string output;      // prefix relative to the output folder, {name} filled in
+    WirelineStyle wireline;    // wireline_color, skyline_color, line_width
+    std::string output;        // prefix relative to the output folder, {name} filled in
     bool sheet = false;
 
     static Result<PhotoViewpoint> fromBlock(const ProjectModel& model, const Block& block);

@@ -36,10 +36,14 @@ struct ViewpointInputs {
     std::vector<std::string> dataSources;  // "name (kind, file)" per layer source
     std::string version;                   // Sylva version
     std::string projectHash;               // hex
-    // Photomontages (PhotomontageRenderer): metres to the nearest visible part of the
-    // proposal, its horizontal extent (radians), the camera match's rms residual (pixels).
+    // A scenario with a proposal (buildings, objects; ProposalReach from its geometry):
+    // horizontal metres to its nearest part, its horizontal extent and the bearings where
+    // that extent starts and ends (radians clockwise from north); a photomontage's camera
+    // match rms residual (pixels).
     std::optional<double> proposalDistance;
     std::optional<double> proposalExtent;
+    std::optional<double> proposalLeftBearing;
+    std::optional<double> proposalRightBearing;
     std::optional<double> matchRms;
 };
 

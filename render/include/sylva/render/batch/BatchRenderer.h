@@ -108,7 +108,8 @@ public:
     GlContext* context() { return context_.get(); }
 
 private:
-    Status renderImage(BatchRun& run, const RenderJob& job);
+    // `keepDepth`: the job's depth buffer goes to the run for a wireline comparison.
+    Status renderImage(BatchRun& run, const RenderJob& job, bool keepDepth);
 
     BatchOptions options_;
     // Declared so that they are destroyed in a safe order: the scheduler (its tasks name

@@ -12,8 +12,11 @@
 #include <atomic>
 #include <chrono>
 #include <cstddef>
+#include <map>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "sylva/core/scene/RenderManifest.h"
 #include "sylva/render/batch/BatchListener.h"
@@ -66,6 +69,20 @@ public:
     // Reports the job done (progress: done, total, ETA are filled in here).
     void done(JobReport report);
 
+    // The depth buffer of an image a wireline comparison needs (`compare { mode =
+    // wireline }`): kept from the image phase to the assemble phase, in memory only
+    // (reversed-Z as SceneRenderer::depth, with the near plane it was rendered with).
+    struct Depth {
+        std::vector<float> depth;
+        double near = 1.0;
+    };
+    void keepDepth(std::size_t jobIndex, Depth depth) { depths_[jobIndex] = std::move(depth); }
+    // The kept depth of job `jobIndex`, or null.
+    const Depth* depthOf(std::size_t jobIndex) const {
+        const auto found = depths_.find(jobIndex);
+        return found == depths_.end() ? nullptr : &found->second;
+    }
+
     const BatchSummary& summary() const { return summary_; }
     BatchSummary& summary() { return summary_; }
 
@@ -75,6 +92,7 @@ private:
     const std::atomic<bool>* cancel_;
     std::chrono::steady_clock::time_point start_;
     std::set<std::size_t> failedJobs_;
+    std::map<std::size_t, Depth> depths_;
     BatchSummary summary_;
 };
 

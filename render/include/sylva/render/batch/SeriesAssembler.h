@@ -24,8 +24,15 @@ public:
     // OUTPUT/VIEW_contact_sheet.png. Unreadable images are left out.
     void writeContactSheets();
 
+    // Whether Compare job `job` is a wireline (`compare { mode = wireline }`): drawn from
+    // the depth buffers the image phase kept (BatchRun::keepDepth) over the left image.
+    static bool isWireline(const BatchPlan& plan, const RenderJob& job);
+
 private:
     void compose(const RenderJob& job);
+    // The wireline image of `job`: what `right` adds to `left` (WirelineMasks by depth) and
+    // the skyline, drawn over `left`'s displayed image (Photomontage::drawWireline).
+    void composeWireline(const RenderJob& job, const Block& block);
     void encode(const RenderJob& job);
 
     BatchRun& run_;

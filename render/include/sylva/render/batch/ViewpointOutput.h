@@ -6,6 +6,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "sylva/core/base/Result.h"
 #include "sylva/core/image/ImageMetadata.h"
@@ -22,9 +23,16 @@ public:
     // it does and the camera has no print format.
     static Result<bool> wantsSheet(const BatchPlan& plan, const RenderJob& job,
                                    const Camera& camera);
-    // The record of a camera job (nullopt for path frames).
+    // The record of a camera job (nullopt for path frames); `tiles` serves the scenario's
+    // mesh sources for the proposal's distance and extent (addProposal).
     static std::optional<ViewpointRecord> record(const BatchPlan& plan, const RenderJob& job,
-                                                 const Camera& camera, int width, int height);
+                                                 const Camera& camera, int width, int height,
+                                                 TileProvider& tiles);
+    // The proposal's nearest distance, extent and bearings from the viewpoint of `camera`
+    // (ProposalReach over `meshes`, the scenario's buildings and objects); nothing without
+    // meshes. A mesh source's error was the render's already: the fields are then left out.
+    static void addProposal(const Camera& camera, const std::vector<const MeshSource*>& meshes,
+                            TileProvider& tiles, ViewpointInputs& inputs);
     // Writes NAME.json, NAME.sheet.pdf and NAME.sheet.png beside the job's output
     // (NAME: the output without its extension). Errors name the file.
     static Status writeSheet(const BatchPlan& plan, const RenderJob& job, const Camera& camera,
