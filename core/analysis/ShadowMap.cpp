@@ -33,16 +33,16 @@ bool inSite(const GridGeometry& g, const std::vector<std::uint8_t>& site, int co
 }
 
 // The site's outline: the pixels of site cells along an edge shared with a cell outside,
-// max(1, scale / 4) pixels wide, in orange.
+// max(2, scale / 3) pixels wide, in yellow.
 void outlineSite(RgbaImage& image, const GridGeometry& g, const std::vector<std::uint8_t>& site,
                  int scale) {
-    const int width = std::max(1, scale / 4);
+    const int width = std::max(2, scale / 3);
     auto paint = [&](int x0, int y0, int w, int h) {
         for (int y = y0; y < y0 + h; ++y)
             for (int x = x0; x < x0 + w; ++x) {
                 std::uint8_t* p = image.at(x, y);
                 p[0] = 255;
-                p[1] = 140;
+                p[1] = 220;
                 p[2] = 0;
             }
     };

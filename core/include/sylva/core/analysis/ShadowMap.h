@@ -3,7 +3,7 @@
 //   - a frame: top-down over the analysis grid, north up, `scale` pixels per cell: the
 //     grey hillshade of the ground (ZtvMap's hillshade(), lit from the frame's own sun),
 //     screens (buildings, canopy: cells with a screen) in brown, cells in shadow darkened
-//     to 45 % with a blue tint, the site's outline in orange (cells of `site` along an
+//     to 45 % with a blue tint, the site's outline in yellow (cells of `site` along an
 //     edge with a cell outside; `site` empty: none), a caption (date, time, sun
 //     elevation and azimuth) and a north arrow;
 //   - a contact sheet: the frames of one date (those with the sun up) as thumbnails in
