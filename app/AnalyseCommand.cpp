@@ -102,7 +102,7 @@ bool writeShadowDay(const ShadowStudy& study, const ElevationGrid& grid,
     for (const ShadowFrame& frame : day.frames) {
         if (!(frame.elevation > 0.0))
             continue;
-        RgbaImage image = drawShadowFrame(grid, screens, frame, day.date, scale);
+        RgbaImage image = drawShadowFrame(grid, screens, study.site, frame, day.date, scale);
         std::string stamp = frame.label;
         stamp.erase(std::remove(stamp.begin(), stamp.end(), ':'), stamp.end());
         const std::filesystem::path png = folder / ("shadow_" + day.date + "_" + stamp + ".png");
@@ -161,9 +161,19 @@ std::optional<nlohmann::ordered_json> runShadowStudy(const ShadowStudy& study,
                 sum += h;
                 ++valid;
             }
-        dates.push_back({{"date", date},
-                         {"frames", day->frames.size()},
-                         {"mean_sun_hours", valid > 0 ? sum / double(valid) : 0.0}});
+        nlohmann::ordered_json entry = {{"date", date},
+                                        {"frames", day->frames.size()},
+                                        {"mean_sun_hours", valid > 0 ? sum / double(valid) : 0.0}};
+        if (!study.site.empty()) {
+            entry["site_mean_sun_hours"] = day->siteMeanSunHours;
+            entry["site_share_at_target"] = day->siteShareAtTarget;
+            std::fprintf(stderr,
+                         "%s: %s: the site (%zu cells) gets %.2f h of sun on average; "
+                         "%.1f %% of it gets at least %.1f h\n",
+                         what.c_str(), date.c_str(), study.siteCells, day->siteMeanSunHours,
+                         100.0 * day->siteShareAtTarget, study.sunHoursTarget);
+        }
+        dates.push_back(std::move(entry));
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -174,6 +184,10 @@ std::optional<nlohmann::ordered_json> runShadowStudy(const ShadowStudy& study,
     summary["kind"] = "shadow_study";
     summary["output"] = folder.string();
     summary["cells"] = std::size_t(study.grid.width) * std::size_t(study.grid.height);
+    if (!study.site.empty()) {
+        summary["site_cells"] = study.siteCells;
+        summary["sun_hours_target"] = study.sunHoursTarget;
+    }
     summary["dates"] = std::move(dates);
     summary["files"] = written.size();
     summary["seconds"] = seconds;

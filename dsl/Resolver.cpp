@@ -375,7 +375,7 @@ void Resolver::reportUnusedSources(const std::vector<ProjectModel>& models) {
     for (const ProjectModel& model : models) {
         for (const std::vector<Block>* blocks :
              {&model.sources, &model.scenarios, &model.cameras, &model.views, &model.compares,
-              &model.blends, &model.paths, &model.ztvs}) {
+              &model.blends, &model.paths, &model.ztvs, &model.shadowStudies, &model.photos}) {
             for (const Block& block : *blocks) {
                 std::set<std::string> referenced;
                 for (const Attribute& attribute : block.attributes) {

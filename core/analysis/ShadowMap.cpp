@@ -27,6 +27,41 @@ void fillCell(RgbaImage& image, int col, int row, int scale, const double rgb[3]
         }
 }
 
+bool inSite(const GridGeometry& g, const std::vector<std::uint8_t>& site, int col, int row) {
+    return col >= 0 && row >= 0 && col < g.width && row < g.height &&
+           site[std::size_t(row) * std::size_t(g.width) + std::size_t(col)] != 0;
+}
+
+// The site's outline: the pixels of site cells along an edge shared with a cell outside,
+// max(2, scale / 3) pixels wide, in yellow.
+void outlineSite(RgbaImage& image, const GridGeometry& g, const std::vector<std::uint8_t>& site,
+                 int scale) {
+    const int width = std::max(2, scale / 3);
+    auto paint = [&](int x0, int y0, int w, int h) {
+        for (int y = y0; y < y0 + h; ++y)
+            for (int x = x0; x < x0 + w; ++x) {
+                std::uint8_t* p = image.at(x, y);
+                p[0] = 255;
+                p[1] = 220;
+                p[2] = 0;
+            }
+    };
+    for (int r = 0; r < g.height; ++r)
+        for (int c = 0; c < g.width; ++c) {
+            if (!inSite(g, site, c, r))
+                continue;
+            const int x = c * scale, y = r * scale;
+            if (!inSite(g, site, c - 1, r))
+                paint(x, y, width, scale);
+            if (!inSite(g, site, c + 1, r))
+                paint(x + scale - width, y, width, scale);
+            if (!inSite(g, site, c, r - 1))
+                paint(x, y, scale, width);
+            if (!inSite(g, site, c, r + 1))
+                paint(x, y + scale - width, scale, width);
+        }
+}
+
 }  // namespace
 
 int shadowFrameScale(const GridGeometry& grid) {
@@ -35,10 +70,12 @@ int shadowFrameScale(const GridGeometry& grid) {
 }
 
 RgbaImage drawShadowFrame(const ElevationGrid& ground, const std::vector<float>& screens,
-                          const ShadowFrame& frame, const std::string& date, int scale) {
+                          const std::vector<std::uint8_t>& site, const ShadowFrame& frame,
+                          const std::string& date, int scale) {
     const GridGeometry& g = ground.geometry;
     SYLVA_CHECK(frame.lit.size() == ground.heights.size());
     SYLVA_CHECK(screens.empty() || screens.size() == ground.heights.size());
+    SYLVA_CHECK(site.empty() || site.size() == ground.heights.size());
     const double sunAltitude = std::max(frame.elevation * kDegree, 5.0);
     const std::vector<float> shade = hillshade(ground, frame.azimuth * kDegree, sunAltitude, 1.0);
     RgbaImage image(g.width * scale, g.height * scale);
@@ -59,6 +96,8 @@ RgbaImage drawShadowFrame(const ElevationGrid& ground, const std::vector<float>&
             }
             fillCell(image, c, r, scale, rgb);
         }
+    if (!site.empty())
+        outlineSite(image, g, site, scale);
     char caption[96];
     std::snprintf(caption, sizeof caption, "%s %s  sun %.0f deg up, azimuth %.0f deg", date.c_str(),
                   frame.label.c_str(), frame.elevation * kDegree, frame.azimuth * kDegree);

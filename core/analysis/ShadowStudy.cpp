@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "PolygonLayer.h"
 #include "StudyBlock.h"
 #include "sylva/core/geo/SolarPosition.h"
 #include "sylva/core/model/BlockReader.h"
@@ -91,6 +92,74 @@ Status readWindow(const BlockReader& reader, ShadowStudy& study) {
     return Status::success();
 }
 
+// The `site` reference: its features source's data set, read in the DEM's CRS.
+Result<std::vector<PolygonFeature>> readSite(const ProjectModel& model, const BlockReader& reader,
+                                             const std::string& demWkt, ShadowStudy& study) {
+    const std::optional<std::string> name = reader.reference("site");
+    const Block* source = name ? model.findSource(*name) : nullptr;
+    if (source == nullptr || source->kind != "features")
+        return Error{reader.where("site") + "the site must be a features source (polygons)"};
+    const BlockReader sourceReader(*source, SchemaRegistry::builtin().find("source", "features"));
+    PolygonLayerRequest request;
+    request.path = projectRelative(model, sourceReader.string("file"));
+    request.layer = sourceReader.string("layer", "");
+    request.role = "a site";
+    study.sitePath = request.path;
+    auto polygons = readPolygons(request, demWkt);
+    if (!polygons)
+        return Error{reader.where("site") + polygons.error().message};
+    if (polygons->empty())
+        return Error{reader.where("site") + request.path + ": the site holds no polygons"};
+    return polygons;
+}
+
+// The site's cells on the study's grid; fails when the site covers no cell centre.
+Status rasterizeSite(const BlockReader& reader, const std::vector<PolygonFeature>& polygons,
+                     ShadowStudy& study) {
+    auto burnt = rasterizePolygons(polygons, study.grid, study.crsWkt, study.sitePath);
+    if (!burnt)
+        return Error{reader.where("site") + burnt.error().message};
+    study.site.resize(burnt->size());
+    for (std::size_t i = 0; i < burnt->size(); ++i)
+        study.siteCells += (study.site[i] = (*burnt)[i] > 0.0f ? 1 : 0);
+    if (study.siteCells == 0)
+        return Error{reader.where("site") + study.sitePath +
+                     ": the site covers no cell centre of the grid (outside the extent or "
+                     "smaller than a cell of " +
+                     formatMetres(study.grid.cellWidth) + ")"};
+    return Status::success();
+}
+
+// The grid: `extent`/`extent_geo`, else the site's box grown by `site_margin`, else the DEM.
+Status readGrid(const ProjectModel& model, const BlockReader& reader, const RasterInfo& dem,
+                bool force, ShadowStudy& study) {
+    std::optional<std::vector<PolygonFeature>> site;
+    std::optional<std::array<double, 4>> around;
+    if (reader.block().find("site") != nullptr) {
+        auto polygons = readSite(model, reader, dem.crsWkt, study);
+        if (!polygons)
+            return polygons.error();
+        const double margin = reader.optionalNumber("site_margin").value_or(250.0);
+        std::array<double, 4> box = polygonBounds(*polygons);
+        const GridGeometry& d = dem.geometry;
+        if (box[2] < d.originX || box[0] > d.originX + d.width * d.cellWidth ||
+            box[3] < d.originY - d.height * d.cellHeight || box[1] > d.originY)
+            return Error{reader.where("site") + study.sitePath +
+                         ": the site lies outside the elevation raster"};
+        around = std::array<double, 4>{box[0] - margin, box[1] - margin, box[2] + margin,
+                                       box[3] + margin};
+        site = std::move(*polygons);
+    }
+    auto grid =
+        gridOf(reader, dem, projectCrsOf(model), force ? 1e300 : ShadowStudy::kMaxCells, around);
+    if (!grid)
+        return grid.error();
+    study.grid = *grid;
+    if (site)
+        return rasterizeSite(reader, *site, study);
+    return Status::success();
+}
+
 }  // namespace
 
 Result<ShadowStudy> planShadowStudy(const ProjectModel& model, const Block& block, bool force) {
@@ -108,10 +177,9 @@ Result<ShadowStudy> planShadowStudy(const ProjectModel& model, const Block& bloc
         return Error{reader.where("elevation") + study.demPath +
                      ": the DEM needs a projected CRS in metres"};
     study.crsWkt = info->crsWkt;
-    auto grid = gridOf(reader, *info, projectCrsOf(model), force ? 1e300 : ShadowStudy::kMaxCells);
-    if (!grid)
-        return grid.error();
-    study.grid = *grid;
+    if (Status ok = readGrid(model, reader, *info, force, study); !ok)
+        return ok.error();
+    study.sunHoursTarget = reader.optionalNumber("sun_hours_target").value_or(2.0);
     const std::string what = "shadow_study '" + study.name + "'";
     if (Status ok = readScreens(model, reader, what, study.grid, study.crsWkt, study.screens); !ok)
         return ok.error();
@@ -126,6 +194,28 @@ Result<ShadowStudy> planShadowStudy(const ProjectModel& model, const Block& bloc
         study.output.replace(at, 6, study.name);
     return study;
 }
+
+namespace {
+
+void summarizeSite(const ShadowStudy& study, ShadowDay& day) {
+    if (study.site.size() != day.sunHours.size())
+        return;
+    double sum = 0.0;
+    std::size_t cells = 0, atTarget = 0;
+    for (std::size_t i = 0; i < day.sunHours.size(); ++i)
+        if (study.site[i] != 0 && !std::isnan(day.sunHours[i])) {
+            sum += day.sunHours[i];
+            ++cells;
+            // The hours are sums of step weights in float: allow their rounding.
+            atTarget += day.sunHours[i] >= study.sunHoursTarget - 1e-4 ? 1 : 0;
+        }
+    if (cells == 0)
+        return;
+    day.siteMeanSunHours = sum / double(cells);
+    day.siteShareAtTarget = double(atTarget) / double(cells);
+}
+
+}  // namespace
 
 Result<ShadowDay> computeShadowDay(const ShadowCaster& caster, const ShadowStudy& study,
                                    const std::string& date) {
@@ -163,6 +253,7 @@ Result<ShadowDay> computeShadowDay(const ShadowCaster& caster, const ShadowStudy
     for (std::size_t i = 0; i < cells; ++i)
         if (std::isnan(caster.ground().heights[i]))
             out.sunHours[i] = std::numeric_limits<float>::quiet_NaN();
+    summarizeSite(study, out);
     return out;
 }
 

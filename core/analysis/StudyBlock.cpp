@@ -209,52 +209,104 @@ Result<std::array<double, 4>> extentIn(const std::array<double, 4>& extent,
 
 }  // namespace
 
-// The analysis grid: `extent` (default: the DEM; in the project's CRS when it has one)
-// snapped to whole cells of `resolution`.
-Result<GridGeometry> gridOf(const BlockReader& reader, const RasterInfo& dem,
-                            const std::string& projectCrs, double maxCells) {
-    const GridGeometry& d = dem.geometry;
-    double west = d.originX, north = d.originY;
-    double east = d.originX + d.width * d.cellWidth, south = d.originY - d.height * d.cellHeight;
-    if (const Value* extent = reader.block().find("extent") ? reader.value("extent") : nullptr) {
-        const ValueList* list = extent->get<ValueList>();
-        if (list == nullptr || list->size() != 4)
-            return Error{reader.where("extent") +
-                         "extent needs four lengths [west, south, east, north]"};
-        west = (*list)[0].get<Quantity>()->value;
-        south = (*list)[1].get<Quantity>()->value;
-        east = (*list)[2].get<Quantity>()->value;
-        north = (*list)[3].get<Quantity>()->value;
-        if (!(east > west && north > south))
-            return Error{reader.where("extent") + "extent must have west < east and south < north"};
-        if (!projectCrs.empty() && !sameCrs(projectCrs, dem.crsWkt)) {
-            auto box = extentIn({west, south, east, north}, projectCrs, dem.crsWkt);
-            if (!box)
-                return Error{reader.where("extent") + "the extent (in the project's crs '" +
-                             projectCrs +
-                             "') cannot be converted to the DEM's CRS: " + box.error().message};
-            west = (*box)[0];
-            south = (*box)[1];
-            east = (*box)[2];
-            north = (*box)[3];
+namespace {
+
+using Box = std::array<double, 4>;  // west, south, east, north
+
+// `extent` as a box in the DEM's CRS: four lengths in the project's CRS (or the DEM's).
+Result<Box> lengthExtent(const BlockReader& reader, const RasterInfo& dem,
+                         const std::string& projectCrs) {
+    const ValueList* list = reader.value("extent")->get<ValueList>();
+    if (list == nullptr || list->size() != 4)
+        return Error{reader.where("extent") +
+                     "extent needs four lengths [west, south, east, north]"};
+    Box box = {(*list)[0].get<Quantity>()->value, (*list)[1].get<Quantity>()->value,
+               (*list)[2].get<Quantity>()->value, (*list)[3].get<Quantity>()->value};
+    if (!(box[2] > box[0] && box[3] > box[1]))
+        return Error{reader.where("extent") + "extent must have west < east and south < north"};
+    if (projectCrs.empty() || sameCrs(projectCrs, dem.crsWkt))
+        return box;
+    auto converted = extentIn(box, projectCrs, dem.crsWkt);
+    if (!converted)
+        return Error{reader.where("extent") + "the extent (in the project's crs '" + projectCrs +
+                     "') cannot be converted to the DEM's CRS: " + converted.error().message};
+    return *converted;
+}
+
+// `extent_geo` as a box in the DEM's CRS: two opposite corners in latitude/longitude (the
+// DSL turns [x, y] corners in the project's CRS into geo positions too); the box holds the
+// DEM-CRS images of the corners and edge midpoints of the latitude/longitude rectangle.
+Result<Box> geoExtent(const BlockReader& reader, const RasterInfo& dem) {
+    const ValueList* list = reader.value("extent_geo")->get<ValueList>();
+    const GeoPosition* a = list && list->size() == 2 ? (*list)[0].get<GeoPosition>() : nullptr;
+    const GeoPosition* b = list && list->size() == 2 ? (*list)[1].get<GeoPosition>() : nullptr;
+    if (a == nullptr || b == nullptr)
+        return Error{reader.where("extent_geo") +
+                     "extent_geo needs two opposite corners [geo(south, west), geo(north, east)]"};
+    const double south = std::min(a->latitude, b->latitude),
+                 north = std::max(a->latitude, b->latitude);
+    const double west = std::min(a->longitude, b->longitude),
+                 east = std::max(a->longitude, b->longitude);
+    if (!(north > south && east > west))
+        return Error{reader.where("extent_geo") +
+                     "the corners of extent_geo must differ in latitude and in longitude"};
+    Box box = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+    for (double fx : {0.0, 0.5, 1.0})
+        for (double fy : {0.0, 0.5, 1.0}) {
+            auto xy = ProjectedCoordinates::fromGeodetic(dem.crsWkt, south + fy * (north - south),
+                                                         west + fx * (east - west));
+            if (!xy)
+                return Error{
+                    reader.where("extent_geo") +
+                    "the corners cannot be converted to the DEM's CRS: " + xy.error().message};
+            box = {std::min(box[0], xy->x), std::min(box[1], xy->y), std::max(box[2], xy->x),
+                   std::max(box[3], xy->y)};
         }
+    return box;
+}
+
+std::string demBoundsText(const GridGeometry& d) {
+    return formatMetres(d.originX) + " .. " + formatMetres(d.originX + d.width * d.cellWidth) +
+           " east, " + formatMetres(d.originY - d.height * d.cellHeight) + " .. " +
+           formatMetres(d.originY) + " north in the DEM's CRS";
+}
+
+}  // namespace
+
+// The analysis grid: `extent` or `extent_geo`, else `fallback`, else the DEM, snapped to
+// whole cells of `resolution`.
+Result<GridGeometry> gridOf(const BlockReader& reader, const RasterInfo& dem,
+                            const std::string& projectCrs, double maxCells,
+                            const std::optional<std::array<double, 4>>& fallback) {
+    const GridGeometry& d = dem.geometry;
+    const Box whole = {d.originX, d.originY - d.height * d.cellHeight,
+                       d.originX + d.width * d.cellWidth, d.originY};
+    const bool hasExtent = reader.block().find("extent") != nullptr;
+    const bool hasGeo = reader.block().find("extent_geo") != nullptr;
+    if (hasExtent && hasGeo)
+        return Error{reader.where("extent_geo") + "give either extent or extent_geo, not both"};
+    Box box = whole;
+    if (hasExtent || hasGeo) {
+        auto given = hasExtent ? lengthExtent(reader, dem, projectCrs) : geoExtent(reader, dem);
+        if (!given)
+            return given.error();
+        box = *given;
         const double tolerance = 1e-6 * d.cellWidth;
-        if (west < d.originX - tolerance || north > d.originY + tolerance ||
-            east > d.originX + d.width * d.cellWidth + tolerance ||
-            south < d.originY - d.height * d.cellHeight - tolerance)
-            return Error{
-                reader.where("extent") + "the extent reaches outside the elevation raster (" +
-                formatMetres(d.originX) + " .. " + formatMetres(d.originX + d.width * d.cellWidth) +
-                " east, " + formatMetres(d.originY - d.height * d.cellHeight) + " .. " +
-                formatMetres(d.originY) + " north in the DEM's CRS)"};
+        if (box[0] < whole[0] - tolerance || box[1] < whole[1] - tolerance ||
+            box[2] > whole[2] + tolerance || box[3] > whole[3] + tolerance)
+            return Error{reader.where(hasExtent ? "extent" : "extent_geo") + "the extent " +
+                         "reaches outside the elevation raster (" + demBoundsText(d) + ")"};
+    } else if (fallback) {
+        box = {std::max((*fallback)[0], whole[0]), std::max((*fallback)[1], whole[1]),
+               std::min((*fallback)[2], whole[2]), std::min((*fallback)[3], whole[3])};
     }
     const double cell = reader.optionalNumber("resolution").value_or(d.cellWidth);
-    GridGeometry grid{west,
-                      north,
+    GridGeometry grid{box[0],
+                      box[3],
                       cell,
                       cell,
-                      int(std::floor((east - west) / cell + 1e-9)),
-                      int(std::floor((north - south) / cell + 1e-9))};
+                      int(std::floor((box[2] - box[0]) / cell + 1e-9)),
+                      int(std::floor((box[3] - box[1]) / cell + 1e-9))};
     if (grid.width < 2 || grid.height < 2)
         return Error{reader.where("resolution") + "the extent holds fewer than 2 × 2 cells of " +
                      formatMetres(cell)};

@@ -4,6 +4,7 @@
 // file:line:col (BlockReader::where or the list item's location).
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,12 +32,16 @@ Result<std::string> demPathOf(const ProjectModel& model, const BlockReader& read
 // The project's `crs` (`project { crs }`), empty when it has none.
 std::string projectCrsOf(const ProjectModel& model);
 
-// The analysis grid in the DEM's CRS: `extent` (default: the DEM; given in the project's
-// CRS when the project has one, like [x, y] positions, else in the DEM's; another CRS is
-// converted to the bounding box of the extent's corners and edge midpoints) snapped to
-// whole cells of `resolution` (default: the DEM's cell size); at most `maxCells` cells.
+// The analysis grid in the DEM's CRS: `extent` (given in the project's CRS when the
+// project has one, like [x, y] positions, else in the DEM's; another CRS is converted to
+// the bounding box of the extent's corners and edge midpoints) or `extent_geo` (two
+// corners in latitude/longitude, converted likewise), either of which must lie inside the
+// DEM; without them `fallback` (a box in the DEM's CRS, clipped to the DEM) or the whole
+// DEM; snapped to whole cells of `resolution` (default: the DEM's cell size); at most
+// `maxCells` cells.
 Result<GridGeometry> gridOf(const BlockReader& reader, const RasterInfo& dem,
-                            const std::string& projectCrs, double maxCells);
+                            const std::string& projectCrs, double maxCells,
+                            const std::optional<std::array<double, 4>>& fallback = std::nullopt);
 
 // The project's sources, built on first use (only blocks that screen with plants or take
 // their targets from the proposal need them) and evaluated synchronously on the CPU.

@@ -64,6 +64,13 @@ KindSchema ztvBlock() {
                   "whole raster when absent. Must lie inside the raster.");
     extent.element = ValueType::Number;
     extent.dimension = Dimension::Length;
+    AttributeSchema extentGeo =
+        attribute("extent_geo", ValueType::List,
+                  "The extent as two opposite corners in latitude/longitude, [geo(south, west), "
+                  "geo(north, east)] (or [x, y] corners in the project's `crs`), converted to "
+                  "the box around the rectangle in the elevation raster's CRS; instead of "
+                  "`extent`. Must lie inside the raster.");
+    extentGeo.element = ValueType::Geo;
 
     AttributeSchema curvature =
         attribute("curvature", ValueType::Bool,
@@ -109,19 +116,19 @@ KindSchema ztvBlock() {
     path.data = std::string("out/{name}.tif");
     output.defaultValue = path;
 
-    return {
-        "ztv",
-        "",
-        PortType::None,
-        "A zone of theoretical visibility, bare earth or screened by buildings and canopy: "
-        "for each cell of the extent, are the targets visible from an observer standing "
-        "there (line of sight over the DEM, with Earth curvature and refraction; "
-        "docs/analysis.md).",
-        {elevation, targets, proposal,
-         length("observer_height", 2.0, 0.01, "Eye height above the ground at every cell."), extent,
-         length("resolution", std::nullopt, 1.0,
-                "Cell size of the analysis grid; the raster's cell size when absent."),
-         curvature, refraction, screening, heightAttribute, output}};
+    return {"ztv",
+            "",
+            PortType::None,
+            "A zone of theoretical visibility, bare earth or screened by buildings and canopy: "
+            "for each cell of the extent, are the targets visible from an observer standing "
+            "there (line of sight over the DEM, with Earth curvature and refraction; "
+            "docs/analysis.md).",
+            {elevation, targets, proposal,
+             length("observer_height", 2.0, 0.01, "Eye height above the ground at every cell."),
+             extent, extentGeo,
+             length("resolution", std::nullopt, 1.0,
+                    "Cell size of the analysis grid; the raster's cell size when absent."),
+             curvature, refraction, screening, heightAttribute, output}};
 }
 
 AttributeSchema dateTimeList(std::string name, std::string doc) {
@@ -161,8 +168,26 @@ KindSchema shadowStudyBlock() {
     path.data = std::string("out/{name}");
     output.defaultValue = path;
     std::vector<AttributeSchema> attributes = {*ztv.find("elevation"), dates};
-    for (const char* shared : {"extent", "resolution", "screening", "screen_height_attribute"})
+    for (const char* shared :
+         {"extent", "extent_geo", "resolution", "screening", "screen_height_attribute"})
         attributes.push_back(*ztv.find(shared));
+    AttributeSchema site = attribute(
+        "site", ValueType::Reference,
+        "The site: the polygons of a `features` source (any CRS). Without `extent` the study "
+        "covers the site's box grown by `site_margin`; the frames outline the site, and the "
+        "summary gives per date the site's mean hours of direct sun and the share of its "
+        "cells with at least `sun_hours_target` hours (BRE 209's amenity test: half of the "
+        "area with 2 hours on 21 March).");
+    site.target = "source";
+    site.port = PortType::Features;
+    attributes.push_back(site);
+    attributes.push_back(length("site_margin", 250.0, 0.0,
+                                "Surroundings around the site's polygons that the study covers "
+                                "when `extent` is absent: ground and screens out there can shade "
+                                "the site (clipped to the elevation raster)."));
+    attributes.push_back(plainNumber("sun_hours_target", 0.0, 24.0, 2.0,
+                                     "Hours of direct sun a site cell needs to count in the "
+                                     "summary's share (2 in BRE 209)."));
     attributes.push_back(clockTime("from",
                                    "Start of the day window, local clock time (06:00:00); "
                                    "midnight when absent."));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <string>
+#include <utility>
 
 namespace sylva::plantimport {
 
@@ -22,12 +23,32 @@ Result<const tinygltf::Accessor*> findAccessor(const std::string& where,
 }
 
 // Whether `count` elements of `elementSize` bytes at `stride` fit the view and its buffer.
+// Written without overflow: offsets, counts and strides come from the file.
 bool fitsBuffer(const tinygltf::Accessor& accessor, const tinygltf::BufferView& view,
                 const tinygltf::Buffer& buffer, std::size_t stride, std::size_t elementSize) {
-    const std::size_t begin = view.byteOffset + accessor.byteOffset;
-    return accessor.count == 0 || (begin + stride * (accessor.count - 1) + elementSize <=
-                                       view.byteOffset + view.byteLength &&
-                                   view.byteOffset + view.byteLength <= buffer.data.size());
+    if (view.byteLength > buffer.data.size() ||
+        view.byteOffset > buffer.data.size() - view.byteLength)
+        return false;
+    if (accessor.count == 0)
+        return true;
+    if (accessor.byteOffset > view.byteLength ||
+        elementSize > view.byteLength - accessor.byteOffset)
+        return false;
+    const std::size_t room = view.byteLength - accessor.byteOffset - elementSize;
+    return stride == 0 || accessor.count - 1 <= room / stride;
+}
+
+// The buffer view of `accessor` and its buffer, when both exist.
+Result<std::pair<const tinygltf::BufferView*, const tinygltf::Buffer*>> viewOf(
+    const std::string& where, const tinygltf::Model& gltf, const tinygltf::Accessor& accessor) {
+    if (accessor.bufferView < 0 || std::size_t(accessor.bufferView) >= gltf.bufferViews.size())
+        return Error{where + ": refers to a missing buffer view " +
+                     std::to_string(accessor.bufferView)};
+    const tinygltf::BufferView& view = gltf.bufferViews[std::size_t(accessor.bufferView)];
+    if (view.buffer < 0 || std::size_t(view.buffer) >= gltf.buffers.size())
+        return Error{where + ": its buffer view refers to a missing buffer " +
+                     std::to_string(view.buffer)};
+    return std::pair{&view, &gltf.buffers[std::size_t(view.buffer)]};
 }
 
 // One component at `p` as a float; false for a component type not allowed here.
@@ -80,8 +101,12 @@ Result<std::vector<float>> readGltfFloats(const std::filesystem::path& path,
     if (accessor.bufferView < 0) {
         return values;  // all zeros by the specification
     }
-    const tinygltf::BufferView& view = gltf.bufferViews[std::size_t(accessor.bufferView)];
-    const tinygltf::Buffer& buffer = gltf.buffers[std::size_t(view.buffer)];
+    auto viewAndBuffer = viewOf(where, gltf, accessor);
+    if (!viewAndBuffer) {
+        return viewAndBuffer.error();
+    }
+    const tinygltf::BufferView& view = *viewAndBuffer->first;
+    const tinygltf::Buffer& buffer = *viewAndBuffer->second;
     const int componentSize =
         tinygltf::GetComponentSizeInBytes(std::uint32_t(accessor.componentType));
     if (componentSize <= 0) {
@@ -118,8 +143,12 @@ Result<std::vector<std::uint32_t>> readGltfIndices(const std::filesystem::path& 
     if (accessor.bufferView < 0 || accessor.type != TINYGLTF_TYPE_SCALAR) {
         return Error{where + ": indices must be scalars in a buffer view"};
     }
-    const tinygltf::BufferView& view = gltf.bufferViews[std::size_t(accessor.bufferView)];
-    const tinygltf::Buffer& buffer = gltf.buffers[std::size_t(view.buffer)];
+    auto viewAndBuffer = viewOf(where, gltf, accessor);
+    if (!viewAndBuffer) {
+        return viewAndBuffer.error();
+    }
+    const tinygltf::BufferView& view = *viewAndBuffer->first;
+    const tinygltf::Buffer& buffer = *viewAndBuffer->second;
     const int size = tinygltf::GetComponentSizeInBytes(std::uint32_t(accessor.componentType));
     if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
         accessor.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&

@@ -263,6 +263,121 @@ expect_stderr "baddate.sylva:5:14: shadow_study 'sun': a date is a plain day"
 expect_nothing_written
 end
 
+# A site: a 100 m square east of the footprint; without an extent the study covers the
+# square grown by site_margin (290600..290900 x 9115500..9115800, 30 x 30 cells of 10 m),
+# the square holds 10 x 10 cell centres. From 09:00 to 15:00 on 21 June the building's
+# shadows (30 m, sun 38 deg and more) end 40 m short of the square: 6 h everywhere on it.
+cat >"$SCRATCH/square.geojson" <<'JSON'
+{"type":"FeatureCollection","crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32725"}},
+ "features":[{"type":"Feature","properties":{"name":"square"},"geometry":{"type":"Polygon",
+ "coordinates":[[[290700,9115600],[290800,9115600],[290800,9115700],[290700,9115700],[290700,9115600]]]}}]}
+JSON
+cat >"$SCRATCH/points.geojson" <<'JSON'
+{"type":"FeatureCollection","features":[{"type":"Feature","properties":{},
+ "geometry":{"type":"Point","coordinates":[-34.9,-7.95]}}]}
+JSON
+site_study() {
+    project "$1" "source town : features { file = \"town.geojson\" }
+source square : features { file = \"$2\" }
+shadow_study sun {
+    elevation = @dem
+    resolution = 10m
+    screening = [@town]
+    site = $3
+    site_margin = 100m
+    sun_hours_target = 2
+    dates = [2024-06-21]
+    from = 09:00:00
+    to = 15:00:00
+    step_minutes = 120
+    utc_offset = -3
+    output = \"out/{name}\"
+}"
+}
+site_study site square.geojson @square
+begin "shadow study with a site: grid around the site, site cells and sun summary"
+rm -rf "$SCRATCH/out"
+(cd "$SCRATCH" && "$SYLVA" analyse site.sylva --json >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 0
+expect_stdout '"site_cells": 100'
+expect_stdout '"site_mean_sun_hours": 6.0'
+expect_stdout '"site_share_at_target": 1.0'
+expect_stderr "the site (100 cells) gets 6.00 h of sun on average; 100.0 % of it gets at least 2.0 h"
+tif=$SCRATCH/out/sun/sun_hours_2024-06-21.tif
+info=$(gdalinfo "$tif" 2>&1)
+grep -qF "Size is 30, 30" <<<"$info" || fail "size: $(grep 'Size is' <<<"$info")"
+grep -qF "Origin = (290600.000000000000000,9115800.000000000000000)" <<<"$info" ||
+    fail "origin: $(grep 'Origin' <<<"$info")"
+end
+
+site_study sitepoints points.geojson @square
+begin "a site of points -> error naming the feature, nothing written"
+rm -rf "$SCRATCH/out"
+(cd "$SCRATCH" && "$SYLVA" analyse sitepoints.sylva >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 1
+expect_stderr "sitepoints.sylva:9:12: "
+expect_stderr "points.geojson: feature 0: a site must be a polygon"
+expect_nothing_written
+end
+
+site_study siteraster square.geojson @dem
+begin "a site that is not a features source -> located error"
+(cd "$SCRATCH" && "$SYLVA" analyse siteraster.sylva >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 1
+expect_stderr "siteraster.sylva:9:12: shadow_study 'sun': the site must be a features source (polygons)"
+expect_nothing_written
+end
+
+# extent_geo: the corners of the good project's extent in lon/lat (gdaltransform), the
+# same grid within a cell (the lon/lat rectangle bows by centimetres in UTM).
+corners=$(printf '290150 9115300\n291350 9116380\n' |
+    gdaltransform -s_srs EPSG:32725 -t_srs EPSG:4326 | awk '{ printf "%s %s ", $1, $2 }')
+read -r w s e n <<<"$corners"
+project geo "ztv mast {
+    elevation = @dem
+    targets = [{ position = [290915m, 9115735m], height = 40m }]
+    extent_geo = [geo(${s}deg, ${w}deg), geo(${n}deg, ${e}deg)]
+    output = \"out/{name}.tif\"
+}
+project { crs = \"EPSG:32725\" }"
+begin "ztv with extent_geo: the grid of the same extent in metres"
+rm -rf "$SCRATCH/out"
+(cd "$SCRATCH" && "$SYLVA" analyse geo.sylva >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 0
+size=$(gdalinfo "$SCRATCH/out/mast.tif" 2>&1 | sed -n 's/^Size is \([0-9]*\), \([0-9]*\)$/\1 \2/p')
+read -r sx sy <<<"$size"
+[ "${sx:-0}" -ge 39 ] && [ "${sx:-0}" -le 41 ] && [ "${sy:-0}" -ge 35 ] && [ "${sy:-0}" -le 37 ] ||
+    fail "size '$size', not about 40 x 36"
+end
+
+project geoboth "ztv mast {
+    elevation = @dem
+    targets = [{ position = [290915m, 9115735m], height = 40m }]
+    extent = [290150m, 9115300m, 291350m, 9116380m]
+    extent_geo = [geo(${s}deg, ${w}deg), geo(${n}deg, ${e}deg)]
+}
+project { crs = \"EPSG:32725\" }"
+begin "extent and extent_geo together -> located error"
+rm -rf "$SCRATCH/out"
+(cd "$SCRATCH" && "$SYLVA" analyse geoboth.sylva >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 1
+expect_stderr "geoboth.sylva:7:18: ztv 'mast': give either extent or extent_geo, not both"
+expect_nothing_written
+end
+
+project geofar 'ztv mast {
+    elevation = @dem
+    targets = [{ position = [290915m, 9115735m], height = 40m }]
+    extent_geo = [geo(-8.5deg, -35.5deg), geo(-8.4deg, -35.4deg)]
+}
+project { crs = "EPSG:32725" }'
+begin "extent_geo outside the DEM -> located error"
+(cd "$SCRATCH" && "$SYLVA" analyse geofar.sylva >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 1
+expect_stderr "geofar.sylva:6:18: ztv 'mast': the extent reaches outside the elevation raster"
+expect_nothing_written
+end
+
 # Resume and shards, as `render` has them: a second --resume run skips both blocks of
 # `screened` (the manifest holds their hashes); touching the footprints file reruns the
 # two blocks that read it; an edit of one block reruns that block only; --shard 2/2 runs

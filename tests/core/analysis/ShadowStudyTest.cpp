@@ -6,6 +6,8 @@
 //    whole day (Olinda, June solstice and March equinox): computeShadowDay's trapezoid
 //    sum over 1-minute frames against the exact ray-box test integrated every 20 s,
 //    within 2 %.
+//  - The site summary (mean hours over a site and the share at a target) against the same
+//    exact integration.
 #include "sylva/core/analysis/ShadowStudy.h"
 
 #include <gtest/gtest.h>
@@ -149,6 +151,67 @@ TEST(ShadowStudy, HoursOfSunMatchTheSolarGeometry) {
         EXPECT_EQ(day->frames.back().label, "24:00");
         EXPECT_LT(day->frames.front().elevation, 0.0);
     }
+}
+
+// The site summary against the same exact ray-box integration: a 6 × 13-cell site from the
+// building's south side (in its midday shadow at the June solstice, 8° S) out into the
+// open. The site's mean hours equal the exact mean within 2 %, and the
+// share of cells with at least `sunHoursTarget` hours equals the exact share (cells whose
+// exact hours lie within 2 % of the target may go either way and are not counted).
+TEST(ShadowStudy, SiteSummaryMatchesTheSolarGeometry) {
+    const Scene scene = boxScene(40, 1.0, 15, 24);  // a 10 m square, rows 15..24
+    const ShadowCaster caster(scene.ground, scene.screens);
+    ShadowStudy study;
+    study.grid = scene.ground.geometry;
+    study.stepMinutes = 1.0;
+    study.utcOffsetHours = -3.0;
+    study.latitude = kLatitude;
+    study.longitude = kLongitude;
+    study.sunHoursTarget = 8.0;
+    study.site.assign(scene.ground.heights.size(), 0);
+    std::vector<std::pair<int, int>> siteCells;
+    for (int row = 25; row < 38; ++row)
+        for (int col = 13; col < 19; ++col) {
+            study.site[std::size_t(row) * 40 + std::size_t(col)] = 1;
+            siteCells.push_back({col, row});
+        }
+    study.siteCells = siteCells.size();
+    auto day = computeShadowDay(caster, study, "2024-06-21");
+    ASSERT_TRUE(day.ok()) << day.error().message;
+    const double midnight = unixAt("2024-06-21T00:00:00-03:00");
+    double exactSum = 0.0;
+    int atTarget = 0, open = 0, near = 0, nearGot = 0;
+    for (const auto& [col, row] : siteCells) {
+        const double x = col - 14.5, y = 24.5 - row;
+        double exact = 0.0;
+        for (double t = 10.0; t < 86400.0; t += 20.0) {
+            const SunDirection sun = SolarPosition::seenFrom(midnight + t, kLatitude, kLongitude);
+            exact += litExactly(x, y, 10.0, sun.azimuth, sun.elevation) ? 20.0 / 3600.0 : 0.0;
+        }
+        exactSum += exact;
+        const bool got = day->sunHours[std::size_t(row) * 40 + std::size_t(col)] >= 8.0f - 1e-4f;
+        if (std::abs(exact - 8.0) < 0.02 * 8.0) {
+            ++near;
+            nearGot += got ? 1 : 0;
+        } else {
+            atTarget += exact >= 8.0 ? 1 : 0;
+            open += exact >= 8.0 ? 0 : 1;
+        }
+    }
+    const double exactMean = exactSum / double(siteCells.size());
+    std::cout << "site: " << day->siteMeanSunHours << " h of sun on average, exact " << exactMean
+              << " h; share at 8 h " << day->siteShareAtTarget << " (exact " << atTarget << " of "
+              << siteCells.size() - std::size_t(near) << " clear cells)\n";
+    EXPECT_NEAR(day->siteMeanSunHours, exactMean, 0.02 * exactMean);
+    EXPECT_GT(atTarget, 0);  // the test separates: some cells reach the target, some do not
+    EXPECT_GT(open, 0);
+    EXPECT_EQ(std::lround(day->siteShareAtTarget * double(siteCells.size())), atTarget + nearGot);
+    // Without a site the summary stays NaN.
+    study.site.clear();
+    auto plain = computeShadowDay(caster, study, "2024-06-21");
+    ASSERT_TRUE(plain.ok());
+    EXPECT_TRUE(std::isnan(plain->siteMeanSunHours));
+    EXPECT_TRUE(std::isnan(plain->siteShareAtTarget));
 }
 
 }  // namespace

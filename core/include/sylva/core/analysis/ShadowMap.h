@@ -3,14 +3,16 @@
 //   - a frame: top-down over the analysis grid, north up, `scale` pixels per cell: the
 //     grey hillshade of the ground (ZtvMap's hillshade(), lit from the frame's own sun),
 //     screens (buildings, canopy: cells with a screen) in brown, cells in shadow darkened
-//     to 45 % with a blue tint, a caption (date, time, sun elevation and azimuth) and a
-//     north arrow;
+//     to 45 % with a blue tint, the site's outline in yellow (cells of `site` along an
+//     edge with a cell outside; `site` empty: none), a caption (date, time, sun
+//     elevation and azimuth) and a north arrow;
 //   - a contact sheet: the frames of one date (those with the sun up) as thumbnails in
 //     rows of `columns`, each captioned with its time.
 // Units: the grid's CRS metres; angles in the captions in degrees. No failure in the
 // drawing (mismatched sizes are programmer errors); writing returns ImageWriter's error.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -26,7 +28,8 @@ namespace sylva {
 int shadowFrameScale(const GridGeometry& grid);
 
 RgbaImage drawShadowFrame(const ElevationGrid& ground, const std::vector<float>& screens,
-                          const ShadowFrame& frame, const std::string& date, int scale);
+                          const std::vector<std::uint8_t>& site, const ShadowFrame& frame,
+                          const std::string& date, int scale);
 
 RgbaImage drawContactSheet(const std::vector<RgbaImage>& frames,
                            const std::vector<std::string>& captions, int columns,

@@ -9,13 +9,23 @@
 // (the frames). Hours of direct sun per cell integrate the lit samples by the
 // trapezoid rule over the window (a sample below the horizon counts as shadow).
 //
+// The site (optional): the polygons of a features source rasterized on the grid (a cell
+// whose centre lies inside is a site cell). Without `extent`/`extent_geo` the grid is the
+// polygons' box grown by `site_margin`, clipped to the DEM. Per date the study reports the
+// site's mean hours of direct sun and the share of its cells with at least
+// `sunHoursTarget` hours (BRE 209, "Site layout planning for daylight and sunlight",
+// 2022: at least half of an amenity area should receive 2 hours of sun on 21 March).
+//
 // planShadowStudy failures are user errors that start with the attribute's
 // file:line:col and the block: those of the ztv (elevation, extent, resolution,
-// screening) and a date that is not a plain date, a window that is empty, a step that
-// does not divide into at most 1440 frames.
+// screening), a date that is not a plain date, a window that is empty, a step that
+// does not divide into at most 1440 frames, a site that is not a features source, whose
+// data set cannot be read, holds no polygons, lies outside the DEM or covers no cell
+// centre of the grid.
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -39,6 +49,10 @@ struct ShadowStudy {
     double utcOffsetHours = 0.0;
     double latitude = 0.0, longitude = 0.0;  // radians: the site's centre, for the sun
     std::string output;                      // folder, {name} replaced
+    std::string sitePath;                    // the site's data set; empty: no site
+    std::vector<std::uint8_t> site;          // per cell, 1 in the site; empty: no site
+    std::size_t siteCells = 0;
+    double sunHoursTarget = 2.0;  // hours of direct sun a site cell needs (the share)
 
     static constexpr double kMaxCells = 4.0e6;
 };
@@ -58,6 +72,10 @@ struct ShadowDay {
     std::string date;
     std::vector<ShadowFrame> frames;
     std::vector<float> sunHours;  // per cell, hours of direct sun in the window
+    // Over the site's cells with data (NaN without a site): mean hours of direct sun, and
+    // the share (0..1) of cells with at least ShadowStudy::sunHoursTarget hours.
+    double siteMeanSunHours = std::numeric_limits<double>::quiet_NaN();
+    double siteShareAtTarget = std::numeric_limits<double>::quiet_NaN();
 };
 
 // One date of the study. Fails when the date cannot be read.
