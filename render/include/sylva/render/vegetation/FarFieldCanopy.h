@@ -79,9 +79,10 @@ public:
     FarFieldFade fade() const;
 
     // Draws the canopy into the bound G-buffer after the terrain (reversed-Z
-    // `projection` with near plane `near`, width × height pixels).
+    // `projection` with near plane `near`, width × height pixels); `sunDirection` (ECEF,
+    // towards the sun) sets the crowns' self-shadowing where they are under two pixels.
     void draw(const Camera& camera, const glm::dmat4& projection, double near, int width,
-              int height, bool ocean);
+              int height, bool ocean, const glm::dvec3& sunDirection);
 
 private:
     FarFieldCanopy() = default;
