@@ -498,7 +498,8 @@ VegetationSettings SceneRenderer::drawFarField(const Camera& camera, const glm::
         return vegetation;
     }
     const auto start = std::chrono::steady_clock::now();
-    farField_->draw(camera, projection, near_, settings.width, settings.height, settings.ocean);
+    farField_->draw(camera, projection, near_, settings.width, settings.height, settings.ocean,
+                    settings.sunDirection);
     glFinish();  // only to time the pass
     statistics_.farFieldPassSeconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -21,6 +21,7 @@ struct FarFieldCanopy::Layers {
     std::vector<CanopyProfile> profiles;
     double smallestSphereRadius = 0.0;  // metres
     double tallest = 0.0;               // metres, largest profile height
+    double crownWidth = 0.0;            // metres, the tallest profile's
     double ambientOcclusion = 1.0;
 };
 
@@ -104,7 +105,10 @@ Result<const FarFieldCanopy::Layers*> FarFieldCanopy::layersFor(const TerrainLay
         const CanopyProfile& p = *profile.value();
         stands.push_back({plants->density(), p});
         out->smallestSphereRadius = std::min(out->smallestSphereRadius, p.smallestSphereRadius());
-        out->tallest = std::max(out->tallest, p.height());
+        if (p.height() > out->tallest) {
+            out->tallest = p.height();
+            out->crownWidth = p.crownWidth();
+        }
         out->ambientOcclusion = p.ambientOcclusion();
         out->profiles.push_back(p);
     }
@@ -188,7 +192,7 @@ FarFieldFade FarFieldCanopy::fade() const {
 }
 
 void FarFieldCanopy::draw(const Camera& camera, const glm::dmat4& projection, double near,
-                          int width, int height, bool ocean) {
+                          int width, int height, bool ocean, const glm::dvec3& sunDirection) {
     if (!frame_.drawn || current_ == nullptr) {
         return;
     }
@@ -196,6 +200,11 @@ void FarFieldCanopy::draw(const Camera& camera, const glm::dmat4& projection, do
     fade().apply(program, projection, near, width, height);
     program.setFloat("uMinimumCover", float(settings_.minimumCover));
     program.setFloat("uAmbientOcclusion", float(current_->ambientOcclusion));
+    program.setVec3("uSunView", glm::vec3(glm::normalize(camera.viewRotation() * sunDirection)));
+    // The crowns' depth is taken as half the top height (the LoD stores no crown base);
+    // it only sets how fast the seen cover grows towards the horizon.
+    program.setVec3("uCrown", glm::vec3(float(current_->crownWidth), float(0.5 * current_->tallest),
+                                        float(CanopyProfile::kSightDepth)));
     rings_->draw(camera, projection, frame_.levels, ocean);
 }
 

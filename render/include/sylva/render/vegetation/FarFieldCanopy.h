@@ -23,6 +23,11 @@
 // same screen-door pattern the trees fade out with (FarFieldFade), so each pixel of the
 // band shows exactly one of them.
 //
+// Look: the shader keeps a pixel with the cover along its ray (the Boolean crown model of
+// CanopyProfile with the ray's slope; gaps show the terrain), draws round crowns where a
+// crown cell spans two pixels and darkens by the crowns' self-shadowing farther away
+// (farfield_canopy.frag; docs/architecture.md).
+//
 // Not a shadow caster: the canopy casts no sun shadows (the near field would be shadowed
 // by canopy that is not drawn there); it receives them through the shading pass.
 // Needs a current GL 4.5 context for create(), update() and draw().
@@ -80,9 +85,10 @@ public:
     FarFieldFade fade() const;
 
     // Draws the canopy into the bound G-buffer after the terrain (reversed-Z
-    // `projection` with near plane `near`, width × height pixels).
+    // `projection` with near plane `near`, width × height pixels); `sunDirection` (ECEF,
+    // towards the sun) sets the crowns' self-shadowing where they are under two pixels.
     void draw(const Camera& camera, const glm::dmat4& projection, double near, int width,
-              int height, bool ocean);
+              int height, bool ocean, const glm::dvec3& sunDirection);
 
 private:
     FarFieldCanopy() = default;
