@@ -4,6 +4,8 @@
 #include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/sources/objects/MeshSimplifier.h"
 
+#include "../../plantlod/GltfAccessors.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -68,71 +70,16 @@ void fillMissingNormals(MeshGeometry& geometry, std::size_t firstVertex, std::si
 
 // ------------------------------------------------------------------------------ glTF
 
-// Accessor `index` as floats (`components` per element); checked against its buffer.
+// Accessors through the plant importer's readers (core/plantlod/GltfAccessors: indices,
+// strides, offsets and buffer bounds checked; normalized integer attributes allowed).
 Result<std::vector<float>> accessorFloats(const std::string& file, const tinygltf::Model& gltf,
                                           int index, int components) {
-    const std::string where = file + ": accessor " + std::to_string(index) + ": ";
-    if (index < 0 || std::size_t(index) >= gltf.accessors.size()) {
-        return Error{where + "does not exist"};
-    }
-    const tinygltf::Accessor& accessor = gltf.accessors[std::size_t(index)];
-    if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT ||
-        tinygltf::GetNumComponentsInType(std::uint32_t(accessor.type)) != components) {
-        return Error{where + "expected " + std::to_string(components) + " floats per element"};
-    }
-    if (accessor.bufferView < 0 || std::size_t(accessor.bufferView) >= gltf.bufferViews.size()) {
-        return Error{where + "has no buffer view"};
-    }
-    const tinygltf::BufferView& view = gltf.bufferViews[std::size_t(accessor.bufferView)];
-    const std::vector<unsigned char>& data = gltf.buffers.at(std::size_t(view.buffer)).data;
-    const std::size_t element = std::size_t(components) * sizeof(float);
-    const std::size_t stride = view.byteStride != 0 ? view.byteStride : element;
-    const std::size_t start = view.byteOffset + accessor.byteOffset;
-    if (accessor.count > 0 && start + (accessor.count - 1) * stride + element > data.size()) {
-        return Error{where + "reaches beyond its buffer (truncated file?)"};
-    }
-    std::vector<float> out(accessor.count * std::size_t(components));
-    for (std::size_t i = 0; i < accessor.count; ++i) {
-        std::memcpy(out.data() + i * std::size_t(components), data.data() + start + i * stride,
-                    element);
-    }
-    return out;
+    return plantimport::readGltfFloats(file, gltf, index, components);
 }
 
 Result<std::vector<std::uint32_t>> accessorIndices(const std::string& file,
                                                    const tinygltf::Model& gltf, int index) {
-    const std::string where = file + ": accessor " + std::to_string(index) + ": ";
-    if (index < 0 || std::size_t(index) >= gltf.accessors.size()) {
-        return Error{where + "does not exist"};
-    }
-    const tinygltf::Accessor& accessor = gltf.accessors[std::size_t(index)];
-    const int size = tinygltf::GetComponentSizeInBytes(std::uint32_t(accessor.componentType));
-    if (accessor.bufferView < 0 || std::size_t(accessor.bufferView) >= gltf.bufferViews.size() ||
-        (size != 1 && size != 2 && size != 4)) {
-        return Error{where + "is not an index accessor"};
-    }
-    const tinygltf::BufferView& view = gltf.bufferViews[std::size_t(accessor.bufferView)];
-    const std::vector<unsigned char>& data = gltf.buffers.at(std::size_t(view.buffer)).data;
-    const std::size_t stride = view.byteStride != 0 ? view.byteStride : std::size_t(size);
-    const std::size_t start = view.byteOffset + accessor.byteOffset;
-    if (accessor.count > 0 &&
-        start + (accessor.count - 1) * stride + std::size_t(size) > data.size()) {
-        return Error{where + "reaches beyond its buffer (truncated file?)"};
-    }
-    std::vector<std::uint32_t> out(accessor.count);
-    for (std::size_t i = 0; i < accessor.count; ++i) {
-        const unsigned char* p = data.data() + start + i * stride;
-        if (size == 1) {
-            out[i] = *p;
-        } else if (size == 2) {
-            std::uint16_t v;
-            std::memcpy(&v, p, 2);
-            out[i] = v;
-        } else {
-            std::memcpy(&out[i], p, 4);
-        }
-    }
-    return out;
+    return plantimport::readGltfIndices(file, gltf, index);
 }
 
 glm::dmat4 nodeTransform(const tinygltf::Node& node) {
