@@ -114,16 +114,33 @@ bool litExactly(double x, double y, double width, double azimuth, double elevati
     return tin * std::tan(elevation) >= kBuildingHeight;
 }
 
-TEST(ShadowStudy, HoursOfSunMatchTheSolarGeometry) {
-    const double cell = 1.0;
-    const Scene scene = boxScene(40, cell, 15, 24);  // a 10 m square
-    const ShadowCaster caster(scene.ground, scene.screens);
+// Hours of direct sun over the day from `midnight` (unix seconds) at (x, y) metres from the
+// 10 m footprint's south-west corner, by the exact ray-box test every 20 s.
+double exactSunHours(double x, double y, double midnight) {
+    double hours = 0.0;
+    for (double t = 10.0; t < 86400.0; t += 20.0) {
+        const SunDirection sun = SolarPosition::seenFrom(midnight + t, kLatitude, kLongitude);
+        hours += litExactly(x, y, 10.0, sun.azimuth, sun.elevation) ? 20.0 / 3600.0 : 0.0;
+    }
+    return hours;
+}
+
+// A study over the scene's grid at Olinda (UTC-3), one frame a minute.
+ShadowStudy minuteStudy(const Scene& scene) {
     ShadowStudy study;
     study.grid = scene.ground.geometry;
     study.stepMinutes = 1.0;
     study.utcOffsetHours = -3.0;
     study.latitude = kLatitude;
     study.longitude = kLongitude;
+    return study;
+}
+
+TEST(ShadowStudy, HoursOfSunMatchTheSolarGeometry) {
+    const double cell = 1.0;
+    const Scene scene = boxScene(40, cell, 15, 24);  // a 10 m square
+    const ShadowCaster caster(scene.ground, scene.screens);
+    ShadowStudy study = minuteStudy(scene);
     // Footprint corner in grid units: (14.5, 24.5) is its south-west corner.
     const std::vector<std::pair<int, int>> points = {{20, 27}, {19, 26}, {12, 20}, {3, 3}};
     for (const char* date : {"2024-06-21", "2024-03-20"}) {
@@ -133,12 +150,7 @@ TEST(ShadowStudy, HoursOfSunMatchTheSolarGeometry) {
         const double midnight = unixAt((std::string(date) + "T00:00:00-03:00").c_str());
         for (const auto& [col, row] : points) {
             const double x = col - 14.5, y = 24.5 - row;  // metres from the corner
-            double exact = 0.0;
-            for (double t = 10.0; t < 86400.0; t += 20.0) {
-                const SunDirection sun =
-                    SolarPosition::seenFrom(midnight + t, kLatitude, kLongitude);
-                exact += litExactly(x, y, 10.0, sun.azimuth, sun.elevation) ? 20.0 / 3600.0 : 0.0;
-            }
+            const double exact = exactSunHours(x, y, midnight);
             const double got = day->sunHours[std::size_t(row) * 40 + std::size_t(col)];
             std::cout << date << " cell (" << col << ", " << row << "): " << got
                       << " h of sun, exact " << exact << " h\n";
@@ -161,12 +173,7 @@ TEST(ShadowStudy, HoursOfSunMatchTheSolarGeometry) {
 TEST(ShadowStudy, SiteSummaryMatchesTheSolarGeometry) {
     const Scene scene = boxScene(40, 1.0, 15, 24);  // a 10 m square, rows 15..24
     const ShadowCaster caster(scene.ground, scene.screens);
-    ShadowStudy study;
-    study.grid = scene.ground.geometry;
-    study.stepMinutes = 1.0;
-    study.utcOffsetHours = -3.0;
-    study.latitude = kLatitude;
-    study.longitude = kLongitude;
+    ShadowStudy study = minuteStudy(scene);
     study.sunHoursTarget = 8.0;
     study.site.assign(scene.ground.heights.size(), 0);
     std::vector<std::pair<int, int>> siteCells;
@@ -183,11 +190,7 @@ TEST(ShadowStudy, SiteSummaryMatchesTheSolarGeometry) {
     int atTarget = 0, open = 0, near = 0, nearGot = 0;
     for (const auto& [col, row] : siteCells) {
         const double x = col - 14.5, y = 24.5 - row;
-        double exact = 0.0;
-        for (double t = 10.0; t < 86400.0; t += 20.0) {
-            const SunDirection sun = SolarPosition::seenFrom(midnight + t, kLatitude, kLongitude);
-            exact += litExactly(x, y, 10.0, sun.azimuth, sun.elevation) ? 20.0 / 3600.0 : 0.0;
-        }
+        const double exact = exactSunHours(x, y, midnight);
         exactSum += exact;
         const bool got = day->sunHours[std::size_t(row) * 40 + std::size_t(col)] >= 8.0f - 1e-4f;
         if (std::abs(exact - 8.0) < 0.02 * 8.0) {
