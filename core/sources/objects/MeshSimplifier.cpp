@@ -150,6 +150,10 @@ MeshGeometry toGeometry(Welded& welded) {
 MeshGeometry decimate(const MeshGeometry& geometry, std::size_t target) {
     Welded welded;
     weld(geometry, welded);
+    // The normal-flipping module compares each collapse against the stored face normals
+    // and computes them itself only when the mesh has none; ours has them (Traits), so
+    // they must be filled here: uninitialized, they made the levels vary from run to run.
+    welded.mesh.update_face_normals();
     using Decimater = OpenMesh::Decimater::DecimaterT<Mesh>;
     Decimater decimater(welded.mesh);
     OpenMesh::Decimater::ModQuadricT<Mesh>::Handle quadric;
