@@ -4,6 +4,8 @@
 #include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/sources/objects/MeshSimplifier.h"
 
+// Accessors are read by the plant importer's checked readers (indices, strides, offsets
+// and buffer bounds; normalized integer attributes allowed).
 #include "../../plantlod/GltfAccessors.h"
 
 #include <algorithm>
@@ -69,18 +71,6 @@ void fillMissingNormals(MeshGeometry& geometry, std::size_t firstVertex, std::si
 }
 
 // ------------------------------------------------------------------------------ glTF
-
-// Accessors through the plant importer's readers (core/plantlod/GltfAccessors: indices,
-// strides, offsets and buffer bounds checked; normalized integer attributes allowed).
-Result<std::vector<float>> accessorFloats(const std::string& file, const tinygltf::Model& gltf,
-                                          int index, int components) {
-    return plantimport::readGltfFloats(file, gltf, index, components);
-}
-
-Result<std::vector<std::uint32_t>> accessorIndices(const std::string& file,
-                                                   const tinygltf::Model& gltf, int index) {
-    return plantimport::readGltfIndices(file, gltf, index);
-}
 
 glm::dmat4 nodeTransform(const tinygltf::Node& node) {
     if (node.matrix.size() == 16) {
@@ -150,14 +140,16 @@ Status appendPrimitive(const std::string& file, const tinygltf::Model& gltf,
     if (position == primitive.attributes.end()) {
         return Error{file + ": a mesh primitive has no POSITION"};
     }
-    Result<std::vector<float>> positions = accessorFloats(file, gltf, position->second, 3);
+    Result<std::vector<float>> positions =
+        plantimport::readGltfFloats(file, gltf, position->second, 3);
     if (!positions) {
         return positions.error();
     }
     std::vector<float> normals, uvs;
     if (const auto normal = primitive.attributes.find("NORMAL");
         normal != primitive.attributes.end()) {
-        Result<std::vector<float>> read = accessorFloats(file, gltf, normal->second, 3);
+        Result<std::vector<float>> read =
+            plantimport::readGltfFloats(file, gltf, normal->second, 3);
         if (!read) {
             return read.error();
         }
@@ -174,7 +166,7 @@ Status appendPrimitive(const std::string& file, const tinygltf::Model& gltf,
             return Error{file + ": a textured mesh primitive has no TEXCOORD_" +
                          std::to_string(texCoord)};
         }
-        Result<std::vector<float>> read = accessorFloats(file, gltf, found->second, 2);
+        Result<std::vector<float>> read = plantimport::readGltfFloats(file, gltf, found->second, 2);
         if (!read) {
             return read.error();
         }
@@ -187,7 +179,8 @@ Status appendPrimitive(const std::string& file, const tinygltf::Model& gltf,
     }
     std::vector<std::uint32_t> indices;
     if (primitive.indices >= 0) {
-        Result<std::vector<std::uint32_t>> read = accessorIndices(file, gltf, primitive.indices);
+        Result<std::vector<std::uint32_t>> read =
+            plantimport::readGltfIndices(file, gltf, primitive.indices);
         if (!read) {
             return read.error();
         }
