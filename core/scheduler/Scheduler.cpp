@@ -273,6 +273,13 @@ TileLookup Scheduler::tryGet(const Source& source, const TileKey& key, int prior
         return {TileLookup::State::Failed, nullptr, failed->second};
     }
     auto task = tasks_.find({source.contentHash(), key});
+    if (task != tasks_.end()) {
+        // Asked again: the task survives the next list. Recorded here, not by a message,
+        // because no message is posted for a task the manager already holds; counted in
+        // lists posted so far, since lists still in the inbox come before this ask.
+        task->second.requested = true;
+        task->second.askedInRound = std::max(task->second.askedInRound, postedRounds_);
+    }
     if (task == tasks_.end() ||
         (task->second.state == TaskState::Queued && priority < task->second.priority)) {
         postLocked({Message::Kind::Request, {TileRequest{&source, key, priority}}});
@@ -298,11 +305,13 @@ void Scheduler::setWanted(const std::vector<TileRequest>& wanted) {
         SYLVA_CHECK(request.source != nullptr && request.key.valid());
         cacheFor(*request.source);
     }
+    ++postedRounds_;
     postLocked({Message::Kind::SetWanted, wanted});
 }
 
 void Scheduler::cancelAll() {
     std::lock_guard lock(mutex_);
+    ++postedRounds_;
     postLocked({Message::Kind::CancelAll, {}});
 }
 
@@ -332,7 +341,7 @@ void Scheduler::queueLocked(const Source& source, const TileKey& key, int priori
     }
     if (!wanted) {
         task->second.requested = true;
-        task->second.askedInRound = wantedRound_;
+        task->second.askedInRound = std::max(task->second.askedInRound, wantedRound_);
     }
     if (task->second.state == TaskState::Queued && priority < task->second.priority) {
         queue_.erase({task->second.priority, task->second.sequence, id});
@@ -526,6 +535,12 @@ void Scheduler::retainOnly(const std::unordered_set<std::uint64_t>& live) {
 void Scheduler::waitIdle() {
     std::unique_lock lock(mutex_);
     progress_.wait(lock, [&] { return inbox_.empty() && tasks_.empty() && reportsInFlight_ == 0; });
+}
+
+void Scheduler::waitForMessages() {
+    std::unique_lock lock(mutex_);
+    // The manager pops and handles messages under the lock: an empty inbox means handled.
+    progress_.wait(lock, [&] { return inbox_.empty(); });
 }
 
 void Scheduler::waitForProgress(std::chrono::milliseconds timeout) {

@@ -122,6 +122,10 @@ public:
 
     // Blocks until no task is queued or running.
     void waitIdle();
+
+    // Blocks until the manager has handled every request, cancellation and wanted list
+    // posted so far (tasks may still be queued or running).
+    void waitForMessages();
     // Blocks until something finished (a tile cached or failed) or `timeout` passed.
     void waitForProgress(std::chrono::milliseconds timeout) override;
 
@@ -155,7 +159,7 @@ private:
         TaskState state = TaskState::Queued;
         std::uint64_t generation = 0;    // of the hash when the task started running
         bool requested = false;          // asked for by tryGet/request (not only a wanted list)
-        std::uint64_t askedInRound = 0;  // wantedRound_ when tryGet/request last asked
+        std::uint64_t askedInRound = 0;  // lists posted before tryGet/request last asked
     };
     struct CachedTile {
         TilePointer tile;
@@ -200,7 +204,8 @@ private:
     std::unordered_map<TaskId, Task, TaskIdHash> tasks_;
     std::unordered_map<std::uint64_t, SourceCache> caches_;
     std::uint64_t sequence_ = 0;
-    std::uint64_t wantedRound_ = 0;  // setWanted lists processed
+    std::uint64_t wantedRound_ = 0;  // setWanted/cancelAll lists processed by the manager
+    std::uint64_t postedRounds_ = 0;  // setWanted/cancelAll lists posted (≥ wantedRound_)
     std::uint64_t useClock_ = 0;
     std::size_t cachedBytes_ = 0;
     std::size_t peakBytes_ = 0;
