@@ -204,7 +204,7 @@ private:
     std::unordered_map<TaskId, Task, TaskIdHash> tasks_;
     std::unordered_map<std::uint64_t, SourceCache> caches_;
     std::uint64_t sequence_ = 0;
-    std::uint64_t wantedRound_ = 0;  // setWanted/cancelAll lists processed by the manager
+    std::uint64_t wantedRound_ = 0;   // setWanted/cancelAll lists processed by the manager
     std::uint64_t postedRounds_ = 0;  // setWanted/cancelAll lists posted (≥ wantedRound_)
     std::uint64_t useClock_ = 0;
     std::size_t cachedBytes_ = 0;
