@@ -8,6 +8,7 @@
 #include "sylva/core/image/Photomontage.h"
 #include "sylva/core/model/BlockReader.h"
 #include "sylva/core/scene/LocationMap.h"
+#include "sylva/core/scene/ViewAnnotation.h"
 #include "sylva/render/batch/JobView.h"
 #include "sylva/render/batch/ViewpointOutput.h"
 
@@ -154,6 +155,16 @@ Result<PhotomontageResult> PhotomontageRenderer::render(BatchRenderer& batch,
     makeImages(photo, picture, baseline.value(), proposed.value(), result);
     result.extent = ProposalExtent::measure(result.proposal, proposedDepth, scene.value()->near(),
                                             result.camera, width, height);
+    if (photo.annotated) {
+        // The proposal from its geometry (visible or not), placed by the camera model.
+        Result<ProposalParts> parts = ProposalReach::partsOf(proposedLayers->meshes, tiles);
+        if (!parts) {
+            return Error{view.value().what + ": " + parts.error().message};
+        }
+        result.annotated = ViewAnnotation::draw(
+            picture.image,
+            ViewAnnotation::plan(result.camera, width, height, photo.camera, &parts.value()));
+    }
     if (photo.sheet) {
         if (Status map =
                 renderLocationMap(*scene.value(), proposedLayers.value(), tiles, settings, result);
