@@ -64,43 +64,34 @@ void planBearings(const Camera& camera, const ImageProjection& projection,
 }
 
 void planProposal(const Camera& camera, const ImageProjection& projection,
-                  const ProposalParts& parts, ViewAnnotations& annotations) {
-    const std::optional<ProposalReach> reach = ProposalReach::measure(camera.geodetic, parts);
-    if (!reach) {
-        return;
-    }
-    annotations.extentText = "proposal " + degrees(reach->leftBearing, 1) + "\u2013" +
-                             degrees(reach->rightBearing, 1) + " (" +
-                             degrees(reach->horizontalExtent, 1) + " wide)";
-    const std::optional<double> left = bearingColumn(camera, projection, reach->leftBearing);
-    const std::optional<double> right = bearingColumn(camera, projection, reach->rightBearing);
+                  const ViewProposal& proposal, ViewAnnotations& annotations) {
+    annotations.extentText = "proposal " + degrees(proposal.leftBearing, 1) + "\u2013" +
+                             degrees(proposal.rightBearing, 1) + " (" +
+                             degrees(proposal.horizontalExtent, 1) + " wide)";
+    const std::optional<double> left = bearingColumn(camera, projection, proposal.leftBearing);
+    const std::optional<double> right = bearingColumn(camera, projection, proposal.rightBearing);
     if (left) {
-        annotations.extentLeft = ViewMark{*left, degrees(reach->leftBearing, 1)};
+        annotations.extentLeft = ViewMark{*left, degrees(proposal.leftBearing, 1)};
     }
     if (right) {
-        annotations.extentRight = ViewMark{*right, degrees(reach->rightBearing, 1)};
+        annotations.extentRight = ViewMark{*right, degrees(proposal.rightBearing, 1)};
     }
     // The bracket over the part of the extent the image shows: from the left end (or the
-    // image's left edge when the extent starts before it) to the right end.
-    const double view = camera.heading();
-    const auto offset = [&](double bearing) {  // signed angle from the view centre
-        return std::remainder(bearing - view, 2.0 * kPi);
-    };
-    const double from = offset(reach->leftBearing);
-    const double to = from + reach->horizontalExtent;
+    // image's left edge when the extent starts before it) to the right end (or the right edge).
+    const double from = std::remainder(proposal.leftBearing - camera.heading(), 2.0 * kPi);
+    const double to = from + proposal.horizontalExtent;
     const double half = projection.horizontalFov() / 2.0;
     if (to >= -half && from <= half) {
         annotations.bracket =
             std::make_pair(left ? *left : 0.0, right ? *right : double(annotations.width));
     }
-    for (std::size_t i = 0; i < parts.points.size(); ++i) {
-        const std::optional<glm::dvec2> pixel = projection.pixelOfPoint(parts.points[i]);
+    for (std::size_t i = 0; i < proposal.points.size(); ++i) {
+        const std::optional<glm::dvec2> pixel = projection.pixelOfPoint(proposal.points[i]);
         if (!pixel || pixel->x < 0.0 || pixel->x > projection.width()) {
             continue;
         }
-        const std::int64_t id = i < parts.pointIds.size() ? parts.pointIds[i] : -1;
         annotations.parts.push_back(
-            {pixel->x, id >= 0 ? std::to_string(id) : std::to_string(i + 1)});
+            {pixel->x, i < proposal.labels.size() ? proposal.labels[i] : std::to_string(i + 1)});
     }
 }
 
@@ -140,14 +131,33 @@ RgbaImage imageOf(cairo_surface_t* surface, int width, int height) {
     return image;
 }
 
-void text(cairo_t* cairo, const std::string& value, double x, double baseline, double anchor,
-          bool bold) {
+double textWidth(cairo_t* cairo, const std::string& value, bool bold) {
     cairo_select_font_face(cairo, "sans-serif", CAIRO_FONT_SLANT_NORMAL,
                            bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
     cairo_text_extents_t extents;
     cairo_text_extents(cairo, value.c_str(), &extents);
-    cairo_move_to(cairo, x - anchor * extents.x_advance, baseline);
+    return extents.x_advance;
+}
+
+// Draws `value` with its left end at x − anchor × its width; returns that span's right end.
+double text(cairo_t* cairo, const std::string& value, double x, double baseline, double anchor,
+            bool bold) {
+    const double width = textWidth(cairo, value, bold);
+    cairo_move_to(cairo, x - anchor * width, baseline);
     cairo_show_text(cairo, value.c_str());
+    return x + (1.0 - anchor) * width;
+}
+
+// Labels centred under `marks` in order, each left out when it would touch the previous
+// one drawn (small images show fewer labels, never overlapping ones).
+void labels(cairo_t* cairo, const std::vector<ViewMark>& marks, double baseline, double gap) {
+    double end = -1e9;
+    for (const ViewMark& mark : marks) {
+        const double width = textWidth(cairo, mark.label, false);
+        if (mark.column - width / 2.0 >= end + gap) {
+            end = text(cairo, mark.label, mark.column, baseline, 0.5, false);
+        }
+    }
 }
 
 void verticalLine(cairo_t* cairo, double x, double top, double bottom) {
@@ -168,8 +178,10 @@ void drawTopBand(cairo_t* cairo, const ViewAnnotations& a) {
     cairo_fill(cairo);
     cairo_set_source_rgb(cairo, 0, 0, 0);
     cairo_set_font_size(cairo, f);
-    text(cairo, a.title, 0.4 * f, 1.1 * f, 0.0, true);
-    if (!a.extentText.empty()) {
+    const double titleEnd = text(cairo, a.title, 0.4 * f, 1.1 * f, 0.0, true);
+    // The extent in words at the right, when it fits beside the title.
+    if (!a.extentText.empty() &&
+        a.width - 0.4 * f - textWidth(cairo, a.extentText, true) > titleEnd + f) {
         setRed(cairo);
         text(cairo, a.extentText, a.width - 0.4 * f, 1.1 * f, 1.0, true);
         cairo_set_source_rgb(cairo, 0, 0, 0);
@@ -180,8 +192,8 @@ void drawTopBand(cairo_t* cairo, const ViewAnnotations& a) {
     cairo_stroke(cairo);
     for (const ViewMark& tick : a.bearings) {
         verticalLine(cairo, tick.column, a.topBand - 0.55 * f, a.topBand);
-        text(cairo, tick.label, tick.column, a.topBand - 0.75 * f, 0.5, false);
     }
+    labels(cairo, a.bearings, a.topBand - 0.75 * f, 0.6 * f);
 }
 
 void drawProposal(cairo_t* cairo, const ViewAnnotations& a) {
@@ -205,19 +217,21 @@ void drawProposal(cairo_t* cairo, const ViewAnnotations& a) {
         cairo_line_to(cairo, a.bracket->second, y);
         cairo_stroke(cairo);
     }
-    cairo_set_font_size(cairo, f);
     for (const ViewMark& part : a.parts) {
-        setRed(cairo);
         verticalLine(cairo, part.column, a.partTickTop, a.partTickBottom);
-        cairo_set_source_rgb(cairo, 0, 0, 0);
-        text(cairo, part.label, part.column, a.height - 0.35 * f, 0.5, false);
     }
+    std::vector<ViewMark> sorted = a.parts;
+    std::sort(sorted.begin(), sorted.end(),
+              [](const ViewMark& p, const ViewMark& q) { return p.column < q.column; });
+    cairo_set_source_rgb(cairo, 0, 0, 0);
+    cairo_set_font_size(cairo, f);
+    labels(cairo, sorted, a.height - 0.35 * f, 0.3 * f);
 }
 
 }  // namespace
 
 ViewAnnotations ViewAnnotation::plan(const Camera& camera, int width, int height,
-                                     const std::string& id, const ProposalParts* parts) {
+                                     const std::string& id, const ViewProposal* proposal) {
     SYLVA_CHECK(width > 0 && height > 0);
     const ImageProjection projection(camera, width, height);
     ViewAnnotations annotations;
@@ -237,8 +251,8 @@ ViewAnnotations ViewAnnotation::plan(const Camera& camera, int width, int height
                         degrees(projection.horizontalFov(), 1) + " \u00d7 VFOV " +
                         degrees(projection.verticalFov(), 1) + "   " + kind;
     planBearings(camera, projection, annotations);
-    if (parts != nullptr) {
-        planProposal(camera, projection, *parts, annotations);
+    if (proposal != nullptr) {
+        planProposal(camera, projection, *proposal, annotations);
     }
     return annotations;
 }

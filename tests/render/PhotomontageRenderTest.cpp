@@ -10,9 +10,10 @@
 //    block guessed 1.2° off: the matched camera is within 0.05° of the truth and the
 //    photomontage equals the proposed scenario rendered directly from the true camera
 //    (RMSE ≤ 2 code values), and the files are written; a failing photo writes nothing;
-//  - `compare { mode = wireline }` in a views series: every line pixel lies within 1 px of
-//    the boundary of the proposal as the two scenario images show it (the pixels where
-//    they differ), and nearly all of that boundary has a line pixel within 1 px.
+//  - `compare { mode = wireline }` in a views series (planar and a 90° cylindrical
+//    panorama): every line pixel lies within 1 px of the boundary of the proposal as the
+//    two scenario images show it (the pixels where they differ), and nearly all of that
+//    boundary has a line pixel within 1 px.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -11,9 +11,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <numbers>
 
+#include "sylva/core/analysis/ProposalReach.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/scene/ImageProjection.h"
 
@@ -104,9 +106,12 @@ void expectNear(const std::vector<double>& found, std::vector<double> expected, 
                 const char* what) {
     std::sort(expected.begin(), expected.end());
     ASSERT_EQ(found.size(), expected.size()) << what;
+    double worst = 0.0;
     for (std::size_t i = 0; i < found.size(); ++i) {
         EXPECT_NEAR(found[i], expected[i], tolerance) << what << " " << i;
+        worst = std::max(worst, std::abs(found[i] - expected[i]));
     }
+    std::printf("%zu %s marks, largest offset %.3f px\n", found.size(), what, worst);
 }
 
 class ViewAnnotationTest : public ::testing::TestWithParam<CameraProjection> {};
@@ -114,7 +119,15 @@ class ViewAnnotationTest : public ::testing::TestWithParam<CameraProjection> {};
 TEST_P(ViewAnnotationTest, MarksStandWhereTheCameraModelProjectsTheProposal) {
     const Camera viewpoint = camera(GetParam());
     const ProposalParts proposal = parts(viewpoint);
-    const ViewAnnotations plan = ViewAnnotation::plan(viewpoint, kWidth, kHeight, "vp2", &proposal);
+    // The proposal as PhotomontageRenderer gives it: ProposalReach's arc, the points.
+    const std::optional<ProposalReach> reach = ProposalReach::measure(viewpoint.geodetic, proposal);
+    ASSERT_TRUE(reach);
+    const ViewProposal marks{reach->leftBearing,
+                             reach->rightBearing,
+                             reach->horizontalExtent,
+                             proposal.points,
+                             {"1", "2", "3", "4", "5"}};
+    const ViewAnnotations plan = ViewAnnotation::plan(viewpoint, kWidth, kHeight, "vp2", &marks);
     const RgbaImage drawn = ViewAnnotation::draw(grey(), plan);
 
     // The placed models: ticks in the bottom band, at the CPU model's pixel of each point.

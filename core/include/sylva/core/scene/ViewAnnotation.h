@@ -22,7 +22,8 @@
 #include <string>
 #include <vector>
 
-#include "sylva/core/analysis/ProposalReach.h"
+#include <glm/glm.hpp>
+
 #include "sylva/core/image/Image.h"
 #include "sylva/core/scene/Camera.h"
 
@@ -31,6 +32,16 @@ namespace sylva {
 struct ViewMark {
     double column = 0.0;  // pixel position x: 0 the left edge, pixel i covers [i, i + 1)
     std::string label;
+};
+
+// The proposal as the annotations need it (the caller measures it: ProposalReach over
+// ProposalReach::partsOf, core/analysis).
+struct ViewProposal {
+    // The smallest arc of bearings holding the proposal: radians clockwise from true north,
+    // from leftBearing clockwise over horizontalExtent to rightBearing.
+    double leftBearing = 0.0, rightBearing = 0.0, horizontalExtent = 0.0;
+    std::vector<glm::dvec3> points;   // placed models' origins, ECEF metres
+    std::vector<std::string> labels;  // one per point (e.g. its feature id)
 };
 
 struct ViewAnnotations {
@@ -55,10 +66,10 @@ public:
     static constexpr std::uint8_t kMarkRed[3] = {220, 20, 20};  // extent and parts, sRGB
 
     // The annotations of `camera` (any projection) seen at width × height pixels, titled
-    // with `id`; `parts` (may be null or empty: no proposal marks) are the proposal's
-    // (ProposalReach::partsOf).
+    // with `id`; `proposal` may be null (no proposal marks). Labels missing from
+    // proposal->labels are the points' 1-based indices.
     static ViewAnnotations plan(const Camera& camera, int width, int height, const std::string& id,
-                                const ProposalParts* parts);
+                                const ViewProposal* proposal);
     // `image` (sRGB 8-bit, treated as opaque) with `annotations` drawn into it; the sizes
     // must match (programmer error otherwise).
     static RgbaImage draw(const RgbaImage& image, const ViewAnnotations& annotations);
