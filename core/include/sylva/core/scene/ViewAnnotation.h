@@ -5,8 +5,9 @@
 //   - along the top edge, on a light band: the viewpoint id, the view bearing and the
 //     fields of view, and a bearing scale (ticks every 5° up to 60° of HFOV, 10° up to
 //     180°, 30° beyond, each labelled with its bearing clockwise from true north);
-//   - the proposal's horizontal extent (ProposalReach, from its geometry, visible or not):
-//     a vertical line at each end's bearing and its bearings and width in the top band;
+//   - the proposal's horizontal extent (ViewProposal: ProposalReach's arc, from its
+//     geometry, visible or not): a vertical line at each end's bearing, and its bearings
+//     and width in words at the right of the top band when they fit beside the title;
 //   - along the bottom edge: every placed model's origin (a turbine's tower foot) as a
 //     tick labelled with its feature id, under a bracket over the extent.
 // Every column comes from the camera model (ImageProjection), never from the image:
@@ -14,7 +15,8 @@
 // viewpoint (exactly the bearing's column in a cylindrical panorama and in a level planar
 // image; in a pitched or rolled planar image the column where that bearing meets the
 // horizon), a part's column the pixel of its ECEF point. Marks outside the image are left
-// out. Text is drawn with cairo's font machinery (real glyphs, as ViewpointSheet).
+// out; a label that would touch the previous one is left out (small images label fewer
+// ticks). Text is drawn with cairo's font machinery (real glyphs, as ViewpointSheet).
 #pragma once
 
 #include <cstdint>
