@@ -84,10 +84,15 @@ bool writeOutputs(const PlannedPhoto& photo, const render::PhotomontageResult& r
         }
         return false;
     };
-    const std::pair<const char*, const RgbaImage*> images[] = {{"_montage.png", &result.montage},
-                                                               {"_wireline.png", &result.wireline},
-                                                               {"_model.png", &result.model}};
+    const std::pair<const char*, const RgbaImage*> images[] = {
+        {"_montage.png", &result.montage},
+        {"_wireline.png", &result.wireline},
+        {"_model.png", &result.model},
+        {"_annotated.png", &result.annotated}};
     for (const auto& [suffix, image] : images) {
+        if (image->pixels.empty()) {  // _annotated.png only when asked for
+            continue;
+        }
         const std::filesystem::path path = prefix.string() + suffix;
         if (Status ok = ImageWriter::writeRgba8(path, image->width, image->height, image->pixels);
             !ok) {

@@ -122,6 +122,7 @@ Result<ProposalParts> ProposalReach::partsOf(const std::vector<const MeshSource*
                 const MeshTile& meshes = **tile;
                 for (const ModelPlacement& placement : meshes.placements) {
                     parts.points.push_back(placement.position);
+                    parts.pointIds.push_back(placement.featureId);
                 }
                 const std::vector<MeshVertex>& vertices = meshes.geometry.vertices;
                 const std::vector<std::uint32_t>& indices = meshes.geometry.indices;

@@ -56,7 +56,8 @@ KindSchema compareBlock() {
         "images: the two scenarios' images shown together as `layout` says; wireline: the "
         "outline of what `right` adds to `left` (by depth: buildings, objects, terrain "
         "edits, hidden parts omitted) and the terrain skyline drawn as lines over `left`'s "
-        "image (LI TGN 06/19 Type 2); planar cameras, 8-bit outputs (.png) only.");
+        "image (LI TGN 06/19 Type 2); planar and cylindrical cameras, 8-bit outputs (.png) "
+        "only.");
     mode.words = {"images", "wireline"};
     mode.defaultValue = word("images");
     KindSchema schema{

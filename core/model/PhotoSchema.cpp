@@ -99,6 +99,12 @@ KindSchema photoBlock() {
                   "size, the viewpoint's record and a location map (the camera needs "
                   "output_size and dpi).");
     sheet.defaultValue = flag(false);
+    AttributeSchema annotated =
+        attribute("annotated", ValueType::Bool,
+                  "Also write PREFIX_annotated.png: the photograph with the viewpoint id, a "
+                  "bearing scale along the top edge, the proposal's horizontal extent and its "
+                  "placed models' positions drawn into it (TGN 06/19 Type 1).");
+    annotated.defaultValue = flag(false);
     KindSchema schema{
         "photo",
         "",
@@ -119,6 +125,7 @@ KindSchema photoBlock() {
     }
     schema.attributes.push_back(std::move(output));
     schema.attributes.push_back(std::move(sheet));
+    schema.attributes.push_back(std::move(annotated));
     return schema;
 }
 

@@ -122,6 +122,12 @@ public:
         }
     }
 
+    // The exact ECEF direction of an output pixel's centre.
+    glm::dvec3 direction(int row, int column) const {
+        return panorama_.ecefDirection({column + 0.5, row + 0.5});
+    }
+    const glm::dvec3& forward(std::size_t face) const { return forwards_[face]; }
+
     Sample at(int row, int column) const {
         if (columns_.empty()) {
             return exact(row, column);
@@ -231,6 +237,43 @@ LinearImage PanoramaFaces::resample(const Camera& camera, int width, int height,
     return resampleFaces<float>(
         camera, width, height, faces, images, [](float value) { return double(value); },
         [](double value) { return float(value); });
+}
+
+std::vector<float> PanoramaFaces::resampleDepth(
+    const Camera& camera, int width, int height, const std::vector<PanoramaFace>& faces,
+    const std::vector<const std::vector<float>*>& depths, const std::vector<double>& nears,
+    double near) {
+    SYLVA_CHECK(faces.size() == depths.size() && faces.size() == nears.size() && !faces.empty());
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+        SYLVA_CHECK(depths[i]->size() ==
+                    std::size_t(faces[i].width) * std::size_t(faces[i].height));
+        SYLVA_CHECK(nears[i] > 0.0);
+    }
+    const SampleMap samples(camera, width, height, faces);
+    std::vector<float> out(std::size_t(width) * std::size_t(height), 0.0f);
+    WorkerPool::shared().run(
+        height,
+        [&](int row) {
+            for (int column = 0; column < width; ++column) {
+                const Sample sample = samples.at(row, column);
+                const PanoramaFace& face = faces[sample.face];
+                const int x = std::clamp(int(std::floor(sample.pixel.x)), 0, face.width - 1);
+                const int y = std::clamp(int(std::floor(sample.pixel.y)), 0, face.height - 1);
+                const float depth =
+                    (*depths[sample.face])[std::size_t(y) * std::size_t(face.width) +
+                                           std::size_t(x)];
+                if (depth <= 0.0f) {
+                    continue;  // sky
+                }
+                // distance along the axis = near_i / depth; along the ray = that / cos θ.
+                const double cosine =
+                    glm::dot(samples.direction(row, column), samples.forward(sample.face));
+                out[std::size_t(row) * std::size_t(width) + std::size_t(column)] =
+                    float(near * double(depth) * cosine / nears[sample.face]);
+            }
+        },
+        4);
+    return out;
 }
 
 }  // namespace sylva

@@ -116,6 +116,7 @@ Result<PhotoViewpoint> PhotoViewpoint::fromBlock(const ProjectModel& model, cons
     photo.wireline = wirelineStyleOf(reader);
     photo.output = expandName(reader.string("output", "{name}"), block.name);
     photo.sheet = reader.boolean("sheet", false);
+    photo.annotated = reader.boolean("annotated", false);
     const Block* camera = model.findCamera(photo.camera);
     if (photo.sheet && camera != nullptr &&
         (camera->find("output_size") == nullptr || camera->find("dpi") == nullptr)) {

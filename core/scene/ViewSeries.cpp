@@ -256,8 +256,9 @@ Status SeriesExpansion::addImages(const Series& series, const Viewpoint& viewpoi
     return {};
 }
 
-// A wireline comparison needs the depth buffers of one planar render per scenario; a
-// panorama (resampled from faces) has none, so its viewpoint gets no wireline image.
+// A wireline comparison needs the depth buffer of one render per scenario: planar, or a
+// cylindrical panorama's resampled from its strips (PanoramaFaces::resampleDepth); an
+// equirectangular image gets no wireline (not tested: its poles' cube faces).
 bool SeriesExpansion::wirelineApplies(const Block& block, const RenderJob& image) const {
     const Value* mode = BlockReader(block, nullptr).value("mode");
     if (mode == nullptr || mode->get<Word>() == nullptr || mode->get<Word>()->text != "wireline" ||
@@ -268,7 +269,8 @@ bool SeriesExpansion::wirelineApplies(const Block& block, const RenderJob& image
     const Value* projection =
         camera != nullptr ? BlockReader(*camera, nullptr).value("projection") : nullptr;
     return projection == nullptr || projection->get<Word>() == nullptr ||
-           projection->get<Word>()->text == "planar";
+           projection->get<Word>()->text == "planar" ||
+           projection->get<Word>()->text == "cylindrical";
 }
 
 Status SeriesExpansion::addComparisons(const Series& series, std::size_t firstImage,

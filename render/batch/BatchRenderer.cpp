@@ -253,15 +253,16 @@ Status BatchRenderer::renderImage(BatchRun& run, const RenderJob& job, bool keep
         run.fail(job, sheet.error().message);
         return {};
     }
-    Result<Image> image =
-        PanoramaRenderer::render(*renderer.value(), layers, tiles, camera,
-                                 view.value().settingsFor(scenarioSetup.value(), job));
+    RenderedDepth depth;
+    Result<Image> image = PanoramaRenderer::render(
+        *renderer.value(), layers, tiles, camera,
+        view.value().settingsFor(scenarioSetup.value(), job), keepDepth ? &depth : nullptr);
     if (!image) {
         run.fail(job, what + ": " + image.error().message);
         return {};
     }
-    if (keepDepth) {  // a planar camera (ViewSeries makes wirelines of no panorama)
-        run.keepDepth(job.index, {renderer.value()->depth(), renderer.value()->near()});
+    if (keepDepth) {  // planar or cylindrical (ViewSeries makes no equirectangular wireline)
+        run.keepDepth(job.index, {std::move(depth.depth), depth.near});
     }
     ImageMetadata metadata = plan.metadataFor(job);
     const std::optional<ViewpointRecord> record = ViewpointOutput::record(

@@ -4,10 +4,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include "sylva/core/analysis/ProposalReach.h"
 #include "sylva/core/base/Hash.h"
 #include "sylva/core/image/Photomontage.h"
 #include "sylva/core/model/BlockReader.h"
 #include "sylva/core/scene/LocationMap.h"
+#include "sylva/core/scene/ViewAnnotation.h"
 #include "sylva/render/batch/JobView.h"
 #include "sylva/render/batch/ViewpointOutput.h"
 
@@ -71,6 +73,32 @@ void makeImages(const PhotoViewpoint& photo, const Photo& picture, DepthRender& 
     result.silhouette = std::move(masks.silhouette);
     result.skyline = std::move(masks.skyline);
     result.proposed = std::move(proposed.image);
+}
+
+// The proposal for a Type 1 annotated photograph, from its geometry (visible or not):
+// ProposalReach's extent seen from `camera`, each placed model's origin labelled with its
+// feature id. nullopt without a proposal.
+Result<std::optional<ViewProposal>> annotatedProposal(const Camera& camera,
+                                                      const std::vector<const MeshSource*>& meshes,
+                                                      TileProvider& tiles) {
+    Result<ProposalParts> parts = ProposalReach::partsOf(meshes, tiles);
+    if (!parts) {
+        return parts.error();
+    }
+    const std::optional<ProposalReach> reach = ProposalReach::measure(camera.geodetic, *parts);
+    if (!reach) {
+        return std::optional<ViewProposal>();
+    }
+    ViewProposal proposal;
+    proposal.leftBearing = reach->leftBearing;
+    proposal.rightBearing = reach->rightBearing;
+    proposal.horizontalExtent = reach->horizontalExtent;
+    proposal.points = parts->points;
+    for (std::size_t i = 0; i < parts->points.size(); ++i) {
+        const std::int64_t id = i < parts->pointIds.size() ? parts->pointIds[i] : -1;
+        proposal.labels.push_back(id >= 0 ? std::to_string(id) : std::to_string(i + 1));
+    }
+    return std::optional<ViewProposal>(std::move(proposal));
 }
 
 // The location plan: the proposed layers from above the viewpoint, with its wedge.
@@ -154,6 +182,16 @@ Result<PhotomontageResult> PhotomontageRenderer::render(BatchRenderer& batch,
     makeImages(photo, picture, baseline.value(), proposed.value(), result);
     result.extent = ProposalExtent::measure(result.proposal, proposedDepth, scene.value()->near(),
                                             result.camera, width, height);
+    if (photo.annotated) {
+        Result<std::optional<ViewProposal>> proposal =
+            annotatedProposal(result.camera, proposedLayers->meshes, tiles);
+        if (!proposal) {
+            return Error{view.value().what + ": " + proposal.error().message};
+        }
+        result.annotated = ViewAnnotation::draw(
+            picture.image, ViewAnnotation::plan(result.camera, width, height, photo.camera,
+                                                proposal->has_value() ? &**proposal : nullptr));
+    }
     if (photo.sheet) {
         if (Status map =
                 renderLocationMap(*scene.value(), proposedLayers.value(), tiles, settings, result);

@@ -449,10 +449,10 @@ for file in vp_today.png vp_proposed.png vp_wireline.png vp_pano_today.png vp_pa
     vp_today.sheet.pdf vp_today.sheet.png vp_today.json vp_proposed.sheet.pdf \
     vp_pano_today.sheet.pdf vp_pano_proposed.sheet.png vp_pano_proposed.json \
     vp_photo_montage.png vp_photo_wireline.png vp_photo_model.png vp_photo.json \
-    vp_photo.sheet.pdf vp_photo.sheet.png vp_photo_map.png; do
+    vp_photo.sheet.pdf vp_photo.sheet.png vp_photo_map.png vp_pano_wireline.png \
+    vp_photo_annotated.png; do
     [ -s "$PACK/out/viewpoints/$file" ] || fail "missing viewpoints/$file"
 done
-[ ! -e "$PACK/out/viewpoints/vp_pano_wireline.png" ] || fail "a panorama got a wireline"
 grep -q '"proposal_distance_m"' "$PACK/out/viewpoints/vp_proposed.json" 2>/dev/null ||
     fail "the proposed sheet's record lacks the proposal's distance"
 grep -q '"proposal_distance_m"' "$PACK/out/viewpoints/vp_today.json" 2>/dev/null &&

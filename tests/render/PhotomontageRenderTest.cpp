@@ -10,9 +10,10 @@
 //    block guessed 1.2° off: the matched camera is within 0.05° of the truth and the
 //    photomontage equals the proposed scenario rendered directly from the true camera
 //    (RMSE ≤ 2 code values), and the files are written; a failing photo writes nothing;
-//  - `compare { mode = wireline }` in a views series: every line pixel lies within 1 px of
-//    the boundary of the proposal as the two scenario images show it (the pixels where
-//    they differ), and nearly all of that boundary has a line pixel within 1 px.
+//  - `compare { mode = wireline }` in a views series (planar and a 90° cylindrical
+//    panorama): every line pixel lies within 1 px of the boundary of the proposal as the
+//    two scenario images show it (the pixels where they differ), and nearly all of that
+//    boundary has a line pixel within 1 px.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -445,15 +446,18 @@ RgbaImage readImage(const fs::path& path) {
     return image;
 }
 
-TEST(CompareWireline, LinesLieOnTheBoundaryOfTheProposal) {
+// A `compare { mode = wireline }` of a views series rendered from the camera whose settings
+// after its position are `view`: every red line pixel lies within one pixel of the boundary
+// of the pixels where the two scenario images differ, >= 98 % of that boundary has a line
+// pixel within one pixel, and away from the lines the image is the left one.
+void expectWirelineOnBoundary(const char* view, const std::string& name) {
     writeGeoJson("proposal.geojson", box(1, 0, 0, 15, 24));
     const glm::dvec2 p = lonLat(-140.0, -140.0);
     char camera[256];
     std::snprintf(camera, sizeof camera,
-                  "camera vp { position = geo(%.10fdeg, %.10fdeg); eye_height = 30m; heading = "
-                  "45deg; pitch = -2deg; fov = 30deg }\n",
-                  p.y, p.x);
-    const fs::path file = folder() / "compare.sylva";
+                  "camera vp { position = geo(%.10fdeg, %.10fdeg); eye_height = 30m; %s }\n", p.y,
+                  p.x, view);
+    const fs::path file = folder() / (name + ".sylva");
     std::ofstream(file)
         << "source ground : constant { kind = elevation; height = 100m }\n"
            "source colour : constant { kind = image; color = #7a8a5a }\n"
@@ -476,7 +480,7 @@ TEST(CompareWireline, LinesLieOnTheBoundaryOfTheProposal) {
     BatchRenderer batch(BatchOptions{});
     ASSERT_TRUE(batch.setProject(std::move(loaded.scenarios)));
     BatchSelection selection;
-    selection.outputFolder = folder() / "compare_out";
+    selection.outputFolder = folder() / (name + "_out");
     Result<BatchPlan> plan = batch.plan(selection);
     ASSERT_TRUE(plan) << plan.error().message;
     WirelineListener listener;
@@ -541,8 +545,20 @@ TEST(CompareWireline, LinesLieOnTheBoundaryOfTheProposal) {
         changed += !line && std::memcmp(&wire.pixels[i * 4], &today.pixels[i * 4], 3) != 0;
     }
     EXPECT_EQ(changed, 0u);
-    ASSERT_TRUE(ImageWriter::writeRgba8(fs::path(SYLVA_TEST_OUTPUT_DIR) / "compare_wireline.png",
-                                        kWidth, kHeight, wire.pixels));
+    ASSERT_TRUE(ImageWriter::writeRgba8(fs::path(SYLVA_TEST_OUTPUT_DIR) / (name + ".png"), kWidth,
+                                        kHeight, wire.pixels));
+}
+
+TEST(CompareWireline, LinesLieOnTheBoundaryOfTheProposal) {
+    expectWirelineOnBoundary("heading = 45deg; pitch = -2deg; fov = 30deg", "compare_wireline");
+}
+
+// A 90° cylindrical panorama: its depth is resampled from the strips' depth buffers
+// (PanoramaFaces::resampleDepth, nearest face pixel, as distance along each pixel's ray), so
+// the lines follow the proposal in the resampled image as closely as in a planar one.
+TEST(CompareWireline, CylindricalPanoramaLinesLieOnTheBoundaryOfTheProposal) {
+    expectWirelineOnBoundary("heading = 60deg; projection = cylindrical; horizontal_fov = 90deg",
+                             "compare_wireline_cylindrical");
 }
 
 }  // namespace

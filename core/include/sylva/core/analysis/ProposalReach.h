@@ -18,6 +18,7 @@
 // Failures (Result errors): a mesh source's own errors (its features, its model file).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -34,6 +35,7 @@ namespace sylva {
 // The proposal's parts in ECEF metres: points (placement origins) and segments (edges).
 struct ProposalParts {
     std::vector<glm::dvec3> points;
+    std::vector<std::int64_t> pointIds;  // the feature id of each point (-1: none), as points
     std::vector<std::pair<glm::dvec3, glm::dvec3>> segments;
     bool empty() const { return points.empty() && segments.empty(); }
 };

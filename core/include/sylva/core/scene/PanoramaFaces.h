@@ -45,6 +45,16 @@ public:
     static LinearImage resample(const Camera& camera, int width, int height,
                                 const std::vector<PanoramaFace>& faces,
                                 const std::vector<const LinearImage*>& images);
+    // The panorama's depth from the faces' reversed-Z depth buffers (`depths[i]`: near_i /
+    // distance along face i's axis, 0 where nothing is drawn, rows top to bottom, face
+    // width × height; `nears[i]` its near plane, metres): per output pixel `near` / the
+    // distance along that pixel's ray, from the face pixel nearest its sample position (not
+    // interpolated: a silhouette's pixels are never a blend of the two sides, sky stays 0).
+    // A wireline's masks (WirelineMasks::fromDepths) compare it between two renders.
+    static std::vector<float> resampleDepth(const Camera& camera, int width, int height,
+                                            const std::vector<PanoramaFace>& faces,
+                                            const std::vector<const std::vector<float>*>& depths,
+                                            const std::vector<double>& nears, double near);
 };
 
 }  // namespace sylva

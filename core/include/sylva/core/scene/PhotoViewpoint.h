@@ -55,6 +55,7 @@ public:
     WirelineStyle wireline;    // wireline_color, skyline_color, line_width
     std::string output;        // prefix relative to the output folder, {name} filled in
     bool sheet = false;
+    bool annotated = false;  // also the Type 1 annotated photograph (ViewAnnotation)
 
     static Result<PhotoViewpoint> fromBlock(const ProjectModel& model, const Block& block);
 

@@ -71,7 +71,7 @@ public:
 
     // The depth buffer of an image a wireline comparison needs (`compare { mode =
     // wireline }`): kept from the image phase to the assemble phase, in memory only
-    // (reversed-Z as SceneRenderer::depth, with the near plane it was rendered with).
+    // (reversed-Z as RenderedDepth: planar along the axis, a panorama along each ray).
     struct Depth {
         std::vector<float> depth;
         double near = 1.0;

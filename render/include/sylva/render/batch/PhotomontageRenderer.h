@@ -39,6 +39,10 @@ struct PhotomontageResult {
     Camera camera;                     // the camera rendered (matched when there are points)
     std::optional<CameraMatch> match;  // the solve and its residuals
     RgbaImage montage, wireline, model;
+    // With `photo { annotated = true }`: the photograph with the Type 1 annotations
+    // (ViewAnnotation: viewpoint id, bearing scale, the proposal's extent and parts);
+    // empty otherwise.
+    RgbaImage annotated;
     RgbaImage proposed;    // the proposed scenario's render (for the sheet and tests)
     PixelMask proposal;    // the proposal's visible pixels
     PixelMask silhouette;  // its outline
