@@ -355,6 +355,51 @@ TEST_F(ShadowTest, OneCentimetreMoveDoesNotShimmer) {
         shaded, firstVisibility.pixels.size() / 4);
 }
 
+// The terrain's depth is kept per cascade (ShadowMaps' cache): rendering the same view
+// again copies every cascade's terrain depth instead of drawing it and gives the same
+// image and sun visibility; another sun, or a camera moved by more than a texel of the
+// finest cascade, draws again.
+TEST_F(ShadowTest, TerrainDepthIsCachedWhileTheCascadeBoxesStay) {
+    Camera camera;
+    camera.geodetic = {46.2 * kDegree, 7.3 * kDegree, 0.0};
+    camera.geodetic.height =
+        hillHeight(camera.geodetic.latitude, camera.geodetic.longitude, 250.0) + 400.0;
+    camera.position = Ellipsoid::toEcef(camera.geodetic);
+    camera.axes = Camera::axesFromAngles(camera.geodetic, 30 * kDegree, -20 * kDegree, 0.0);
+    camera.verticalFov = 60 * kDegree;
+    RenderSettings settings;
+    settings.width = 160;
+    settings.height = 90;
+    settings.ocean = false;
+    settings.atmosphere = false;
+    settings.sunVisibilityOutput = true;
+    settings.sunDirection = sunAt(camera.geodetic, 4 * kDegree, 250 * kDegree);
+    const TerrainLayers layers{hills_, nullptr, hillNormals_, {}, {}};
+    settings.sunDirection = sunAt(camera.geodetic, 30 * kDegree, 100 * kDegree);
+    (void)render(layers, camera, settings);  // another sun before: nothing to reuse
+    settings.sunDirection = sunAt(camera.geodetic, 4 * kDegree, 250 * kDegree);
+    const Image drawn = render(layers, camera, settings);
+    const int cascades = int(renderer_->shadowMaps().cascades().size());
+    ASSERT_EQ(cascades, 5);
+    EXPECT_EQ(renderer_->shadowMaps().cachedCascades(), 0);
+    const Image copied = render(layers, camera, settings);
+    EXPECT_EQ(renderer_->shadowMaps().cachedCascades(), cascades);
+    EXPECT_EQ(drawn.pixels, copied.pixels);
+    std::size_t shaded = 0;
+    for (std::size_t i = 1; i < copied.pixels.size(); i += 4) {
+        shaded += copied.pixels[i] < 128 ? 1 : 0;
+    }
+    EXPECT_GT(shaded, copied.pixels.size() / 4 / 20) << "no shadows to compare";
+    Camera moved = camera;
+    moved.position += camera.axes[0] * 5.0;  // five metres: more than the finest texels
+    moved.geodetic = Ellipsoid::toGeodetic(moved.position);
+    (void)render(layers, moved, settings);
+    EXPECT_LT(renderer_->shadowMaps().cachedCascades(), cascades);
+    settings.sunDirection = sunAt(camera.geodetic, 5 * kDegree, 250 * kDegree);
+    (void)render(layers, camera, settings);
+    EXPECT_EQ(renderer_->shadowMaps().cachedCascades(), 0);
+}
+
 // Terrain shadows of a real DEM (Olinda, 90 m, scripts/fetch-samples) seen from 4 km
 // straight above at a low sun (5°), against a CPU ray march of the same heightfield as
 // the clipmap draws it (each point from the ring level that covers it) from each pixel's
