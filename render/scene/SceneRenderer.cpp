@@ -319,6 +319,7 @@ Status SceneRenderer::drawSample(const Camera& camera, const glm::dmat4& project
     shading.atmosphere = settings.atmosphere;
     shading.atmosphereParameters = settings.atmosphereParameters;
     shading.exposure = exposureScale(statistics_.ev100) * settings.exposure;
+    shading.sunVisibilityOutput = settings.sunVisibilityOutput;
     if (settings.ambientOcclusion.enabled) {
         const auto occlusionStart = std::chrono::steady_clock::now();
         Result<std::uint32_t> occlusion =

@@ -79,6 +79,7 @@ void ShadingPass::run(const Framebuffer& gbuffer, const Framebuffer& target, con
     program_.setVec3("uSunEcef", glm::vec3(glm::normalize(settings.sunDirection)));
     program_.setInt("uAtmosphere", settings.atmosphere ? 1 : 0);
     program_.setFloat("uExposure", float(settings.exposure));
+    program_.setInt("uSunVisibilityOutput", settings.sunVisibilityOutput ? 1 : 0);
     glBindTextureUnit(0, gbuffer.colorTexture(0));
     glBindTextureUnit(1, gbuffer.colorTexture(1));
     glBindTextureUnit(2, gbuffer.depthTexture());

@@ -36,8 +36,13 @@ ShadowCascade makeCascade(const Camera& camera, const glm::dmat3& light, double 
     // the texel grid is fixed to the Earth, not to the camera.
     const glm::dvec3 cameraLight = light * camera.position;
     const glm::dvec3 absolute = light * (camera.position + cascade.centerRelative);
+    // Depth too (whole texels along the sun): a map's depths are then those of the
+    // Earth-fixed box, whatever the camera's position, so ShadowMaps can keep a cascade's
+    // terrain depth while the box does not move.
     const glm::dvec3 snapped(std::floor(absolute.x / texel + 0.5) * texel,
-                             std::floor(absolute.y / texel + 0.5) * texel, absolute.z);
+                             std::floor(absolute.y / texel + 0.5) * texel,
+                             std::floor(absolute.z / texel + 0.5) * texel);
+    cascade.boxLight = snapped;
     const glm::dvec3 box = snapped - cameraLight;
     const double depthNear = box.z + 2.0 * radius;  // towards the sun
     const double depthFar = box.z - radius;

@@ -2,7 +2,12 @@
 
 #include <glad/gl.h>
 
+#include <algorithm>
+#include <iterator>
+#include <optional>
 #include <string>
+
+#include "sylva/core/base/Hash.h"
 
 namespace sylva::render {
 
@@ -19,6 +24,8 @@ Status ShadowMaps::ensureTexture(int resolution) {
     GlTexture texture = createGlTexture(GL_TEXTURE_2D_ARRAY);
     glTextureStorage3D(texture.get(), 1, GL_DEPTH_COMPONENT32F, resolution, resolution,
                        kMaxCascades);
+    GlTexture cache = createGlTexture(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(cache.get(), 1, GL_DEPTH_COMPONENT32F, resolution, resolution, kMaxCascades);
     if (GLenum error = glGetError(); error != GL_NO_ERROR) {
         return Error{"shadow maps: the driver cannot make a " + std::to_string(resolution) +
                      "² × " + std::to_string(kMaxCascades) +
@@ -33,6 +40,8 @@ Status ShadowMaps::ensureTexture(int resolution) {
     glTextureParameteri(texture.get(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glTextureParameteri(texture.get(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     texture_ = std::move(texture);
+    cache_ = std::move(cache);
+    std::fill(std::begin(cacheValid_), std::end(cacheValid_), false);
     resolution_ = resolution;
     glNamedFramebufferDrawBuffer(framebuffer_.get(), GL_NONE);
     glNamedFramebufferReadBuffer(framebuffer_.get(), GL_NONE);
@@ -69,11 +78,10 @@ Status ShadowMaps::render(const Camera& camera, double aspect, const glm::dvec3&
     glDepthMask(GL_TRUE);
     glEnable(GL_DEPTH_CLAMP);
     glDisable(GL_CULL_FACE);
+    cachedCascades_ = 0;
     for (std::size_t i = 0; i < cascades_.size(); ++i) {
         glNamedFramebufferTextureLayer(framebuffer_.get(), GL_DEPTH_ATTACHMENT, texture_.get(), 0,
                                        GLint(i));
-        const float one = 1.0f;
-        glClearNamedFramebufferfv(framebuffer_.get(), GL_DEPTH, 0, &one);
         ShadowView view;
         view.camera = &camera;
         view.lightRotation = lightRotation_;
@@ -82,13 +90,57 @@ Status ShadowMaps::render(const Camera& camera, double aspect, const glm::dvec3&
         view.cascade = &cascades_[i];
         view.cascadeIndex = int(i);
         view.resolution = resolution_;
-        for (ShadowCaster* caster : casters) {
-            caster->drawShadow(view);
-        }
+        drawCascade(i, view, casters);
     }
     glDisable(GL_DEPTH_CLAMP);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return Status::success();
+}
+
+void ShadowMaps::drawCascade(std::size_t index, const ShadowView& view,
+                             const std::vector<ShadowCaster*>& casters) {
+    // The key: the Earth-fixed box (its depths do not depend on the camera, ShadowCascades),
+    // the sun and every cacheable caster's own state.
+    ContentHash hash;
+    const ShadowCascade& cascade = *view.cascade;
+    hash.add(cascade.boxLight.x).add(cascade.boxLight.y).add(cascade.boxLight.z);
+    hash.add(cascade.radius).add(resolution_);
+    for (int column = 0; column < 3; ++column) {
+        for (int row = 0; row < 3; ++row) {
+            hash.add(view.lightRotation[column][row]);
+        }
+    }
+    std::vector<ShadowCaster*> cached, drawn;
+    for (ShadowCaster* caster : casters) {
+        if (std::optional<std::uint64_t> key = caster->shadowCacheKey(view)) {
+            hash.add(*key);
+            cached.push_back(caster);
+        } else {
+            drawn.push_back(caster);
+        }
+    }
+    const std::uint64_t key = hash.value();
+    const GLint layer = GLint(index);
+    if (!cached.empty() && cacheValid_[index] && cacheKeys_[index] == key) {
+        glCopyImageSubData(cache_.get(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, texture_.get(),
+                           GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, resolution_, resolution_, 1);
+        ++cachedCascades_;
+    } else {
+        const float one = 1.0f;
+        glClearNamedFramebufferfv(framebuffer_.get(), GL_DEPTH, 0, &one);
+        for (ShadowCaster* caster : cached) {
+            caster->drawShadow(view);
+        }
+        cacheValid_[index] = !cached.empty();
+        cacheKeys_[index] = key;
+        if (!cached.empty()) {
+            glCopyImageSubData(texture_.get(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, cache_.get(),
+                               GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, resolution_, resolution_, 1);
+        }
+    }
+    for (ShadowCaster* caster : drawn) {
+        caster->drawShadow(view);
+    }
 }
 
 std::vector<glm::mat4> ShadowMaps::shadowMatrices() const {

@@ -10,6 +10,7 @@
 #include <string>
 #include <utility>
 
+#include "sylva/core/base/Hash.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/terrain/ElevationQuery.h"
 
@@ -341,11 +342,10 @@ void TerrainRenderer::draw(const Camera& camera, const glm::dmat4& projection,
     statistics_.triangles = drawRings(program_, camera, view, projection, levels, ocean);
 }
 
-void TerrainRenderer::drawShadow(const ShadowView& view) {
+std::optional<LevelRange> TerrainRenderer::shadowLevels(const ShadowView& view) const {
     if (!lastLevels_ || view.camera == nullptr) {
-        return;  // nothing updated yet
+        return std::nullopt;  // nothing updated yet
     }
-    const Camera& camera = *view.camera;
     const ShadowCascade& cascade = *view.cascade;
     // Only the levels whose rings can reach the cascade: the disk around the nadir that
     // holds the cascade's box and its depth range towards the sun (two radii), and no
@@ -361,8 +361,32 @@ void TerrainRenderer::drawShadow(const ShadowView& view) {
                                                      (settings_.clipmapSize * cascade.texelSize))));
     levels.finest = std::clamp(finest, levels.coarsest, levels.finest);
     levels.coarsest = std::clamp(coarsest, levels.coarsest, levels.finest);
+    return levels;
+}
+
+void TerrainRenderer::drawShadow(const ShadowView& view) {
+    const std::optional<LevelRange> levels = shadowLevels(view);
+    if (!levels) {
+        return;
+    }
     shadowProgram_.use();
-    drawRings(shadowProgram_, camera, view.lightRotation, view.projection, levels, lastOcean_);
+    drawRings(shadowProgram_, *view.camera, view.lightRotation, view.projection, *levels,
+              lastOcean_);
+}
+
+std::optional<std::uint64_t> TerrainRenderer::shadowCacheKey(const ShadowView& view) const {
+    const std::optional<LevelRange> levels = shadowLevels(view);
+    if (!levels) {
+        return std::nullopt;
+    }
+    const glm::dvec3 camera = view.lightRotation * view.camera->position;
+    const double texel = view.cascade->texelSize;
+    ContentHash hash;
+    hash.add(levels->coarsest).add(levels->finest).add(textureCeiling_).add(lastOcean_);
+    hash.add(heightTexture_.uploadedBytes()).add(sourceHashes_[0]);
+    hash.add(std::floor(camera.x / texel)).add(std::floor(camera.y / texel));
+    hash.add(std::floor(camera.z / texel));
+    return hash.value();
 }
 
 std::uint64_t TerrainRenderer::drawRings(ShaderProgram& program, const Camera& camera,

@@ -25,6 +25,7 @@ uniform bool uAtmosphere;
 uniform sampler2D uAmbientOcclusion;  // screen-space (AmbientOcclusionPass), r
 uniform bool uHasAmbientOcclusion;
 uniform float uExposure;  // 1 / (1.2 * 2^EV100) x the project's exposure scale
+uniform bool uSunVisibilityOutput;  // ShadingSettings::sunVisibilityOutput
 
 // Materials of the G-buffer (normal.w, rounded): 0 ground (terrain.frag), 1 water
 // (terrain.frag), 2 leaves (every plant shader in shaders/vegetation: ellipsoids, lines,
@@ -35,6 +36,35 @@ uniform float uExposure;  // 1 / (1.2 * 2^EV100) x the project's exposure scale
 // for a dielectric of refractive index ~1.5 ((n - 1)² / (n + 1)²).
 const vec2 MATERIAL_ROUGHNESS_F0[4] =
     vec2[4](vec2(0.8, 0.04), vec2(0.05, 0.02), vec2(0.5, 0.04), vec2(0.6, 0.04));
+
+// Concave curvature (1 / metres) of the terrain at `pixel` for the shadow lookup's curved
+// receiver (shadows.glsl): from the four neighbouring pixels of the same terrain material,
+// κ = −(n_q − n) · (p_q − p) / |p_q − p|² (normals converging over a valley), the largest;
+// 0 where the ground is convex or planar. Plants (noisy per-cell normals) and built
+// objects (planar faces) keep 0: their receiver plane holds.
+float concaveCurvature(ivec2 pixel, vec3 positionView, vec3 normal, int material) {
+    if (material > 1) {
+        return 0.0;
+    }
+    float curvature = 0.0;
+    const ivec2 steps[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
+    vec2 size = vec2(textureSize(uDepth, 0));
+    for (int k = 0; k < 4; ++k) {
+        ivec2 q = pixel + steps[k];
+        float depth = texelFetch(uDepth, q, 0).r;
+        vec4 normalMaterial = texelFetch(uNormal, q, 0);
+        if (depth <= 0.0 || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(size))) ||
+            int(normalMaterial.w + 0.5) > 1) {
+            continue;
+        }
+        vec2 ndc = (vec2(q) + 0.5) / size * 2.0 - 1.0;
+        vec3 direction = normalize(vec3((ndc + uProjectionOffset) / uProjectionScale, -1.0));
+        vec3 gap = direction * ((uNear / depth) / -direction.z) - positionView;
+        float turn = -dot(normalize(normalMaterial.xyz) - normal, gap);
+        curvature = max(curvature, turn / max(dot(gap, gap), 1e-6));
+    }
+    return curvature;
+}
 
 vec3 linearToSrgb(vec3 c) {
     c = clamp(c, 0.0, 1.0);
@@ -66,7 +96,16 @@ void main() {
         // tilted with the normal (isotropic sky: (1 + n.up) / 2).
         vec3 sunLight = atmosphereSunIlluminance(surfaceSphere, sun);
         // Cascaded shadow maps (seed 001 §7.1): 0 in the shadow of terrain, plants, objects.
-        sunLight *= sunVisibility(directionEcef * distance, normalize(uViewToEcef * normal));
+        int material = clamp(int(normalMaterial.w + 0.5), 0, 3);
+        float visibility =
+            sunVisibility(directionEcef * distance, normalize(uViewToEcef * normal),
+                          concaveCurvature(pixel, directionView * distance, normal, material));
+        if (uSunVisibilityOutput) {
+            outRadiance = vec4(vec3(visibility), 1.0);
+            outColor = vec4(vec3(visibility), 1.0);
+            return;
+        }
+        sunLight *= visibility;
         // albedo.a: ambient occlusion (1 for terrain; per primitive for plants, §6.5),
         // times the screen-space occlusion (seed 001 §7.1) where it is computed: sky
         // light only, the sun has its shadow maps.
@@ -76,7 +115,6 @@ void main() {
         }
         vec3 ambient = atmosphereSkyIrradiance(surfaceSphere, sun) * (0.5 + 0.5 * dot(normal, upView)) *
                        occlusion;
-        int material = clamp(int(normalMaterial.w + 0.5), 0, 3);
         vec3 surface;
         if (material != 1) {
             // Sunlight through Schlick's BRDF (seed 001 §7.1); skylight Lambertian (the
@@ -100,6 +138,10 @@ void main() {
         } else {
             radiance = surface;
         }
+    } else if (uSunVisibilityOutput) {
+        outRadiance = vec4(1.0);
+        outColor = vec4(1.0);
+        return;
     } else {
         radiance = uAtmosphere ? atmosphereSky(origin, direction, sun) : vec3(0.0);
     }

@@ -304,7 +304,11 @@ TEST_F(ShadowTest, PoleShadowLengthIsHeightOverTangentOfElevation) {
 
 // No shimmering: moving the camera by 1 cm changes a view full of hill shadows (low sun)
 // by less than 1.5 (RMSE of 8-bit sRGB values), the bound the terrain alone meets in
-// TerrainAccuracy; and the shadows are really there (the image differs from an unshadowed one).
+// TerrainAccuracy, and the sun visibility itself (0..255) by less than that too. The
+// shadows are really there: a twentieth of the view has a sun visibility below one half
+// (7 % seen), and they change the image by an RMSE above 2 (6.4 seen). The sun stands at
+// 4°: at 8°, as before, 2 % of the view was shaded and, under the physical sky, the
+// shadows changed the image by an RMSE of 1.97–2.2, too close to the bound to tell.
 TEST_F(ShadowTest, OneCentimetreMoveDoesNotShimmer) {
     Camera a;
     a.geodetic = {46.2 * kDegree, 7.3 * kDegree, 0.0};
@@ -320,30 +324,97 @@ TEST_F(ShadowTest, OneCentimetreMoveDoesNotShimmer) {
     settings.height = 180;
     settings.ocean = false;
     settings.atmosphere = false;  // the haze would hide the shadows' edges
-    settings.sunDirection = sunAt(a.geodetic, 8 * kDegree, 250 * kDegree);
+    settings.sunDirection = sunAt(a.geodetic, 4 * kDegree, 250 * kDegree);
     const TerrainLayers layers{hills_, nullptr, hillNormals_, {}, {}};
     const Image first = render(layers, a, settings);
     const Image second = render(layers, b, settings);
+    settings.sunVisibilityOutput = true;
+    const Image firstVisibility = render(layers, a, settings);
+    const Image secondVisibility = render(layers, b, settings);
+    settings.sunVisibilityOutput = false;
     settings.shadows.enabled = false;
     const Image unshadowed = render(layers, a, settings);
     ASSERT_EQ(first.pixels.size(), second.pixels.size());
+    ASSERT_EQ(firstVisibility.pixels.size(), first.pixels.size());
+    std::size_t shaded = 0;
+    for (std::size_t i = 1; i < firstVisibility.pixels.size(); i += 4) {
+        shaded += firstVisibility.pixels[i] < 128 ? 1 : 0;
+    }
     const std::filesystem::path outputs(SYLVA_TEST_OUTPUT_DIR);
     std::filesystem::create_directories(outputs);
     (void)ImageWriter::writeRgba8(outputs / "shadows_shimmer.png", first.width, first.height,
                                   first.pixels);
     EXPECT_LT(rmse(first, second), 1.5);
+    EXPECT_LT(rmse(firstVisibility, secondVisibility), 1.5);
+    EXPECT_GT(shaded, firstVisibility.pixels.size() / 4 / 20) << "the view has few shadows";
     EXPECT_GT(rmse(first, unshadowed), 2.0) << "the view has no visible shadows";
+    std::printf(
+        "shimmer: image %.3f, visibility %.3f, shadows change the image by %.3f, "
+        "%zu of %zu pixels shaded\n",
+        rmse(first, second), rmse(firstVisibility, secondVisibility), rmse(first, unshadowed),
+        shaded, firstVisibility.pixels.size() / 4);
+}
+
+// The terrain's depth is kept per cascade (ShadowMaps' cache): rendering the same view
+// again copies every cascade's terrain depth instead of drawing it and gives the same
+// image and sun visibility; another sun, or a camera moved by more than a texel of the
+// finest cascade, draws again.
+TEST_F(ShadowTest, TerrainDepthIsCachedWhileTheCascadeBoxesStay) {
+    Camera camera;
+    camera.geodetic = {46.2 * kDegree, 7.3 * kDegree, 0.0};
+    camera.geodetic.height =
+        hillHeight(camera.geodetic.latitude, camera.geodetic.longitude, 250.0) + 400.0;
+    camera.position = Ellipsoid::toEcef(camera.geodetic);
+    camera.axes = Camera::axesFromAngles(camera.geodetic, 30 * kDegree, -20 * kDegree, 0.0);
+    camera.verticalFov = 60 * kDegree;
+    RenderSettings settings;
+    settings.width = 160;
+    settings.height = 90;
+    settings.ocean = false;
+    settings.atmosphere = false;
+    settings.sunVisibilityOutput = true;
+    settings.sunDirection = sunAt(camera.geodetic, 4 * kDegree, 250 * kDegree);
+    const TerrainLayers layers{hills_, nullptr, hillNormals_, {}, {}};
+    settings.sunDirection = sunAt(camera.geodetic, 30 * kDegree, 100 * kDegree);
+    (void)render(layers, camera, settings);  // another sun before: nothing to reuse
+    settings.sunDirection = sunAt(camera.geodetic, 4 * kDegree, 250 * kDegree);
+    const Image drawn = render(layers, camera, settings);
+    const int cascades = int(renderer_->shadowMaps().cascades().size());
+    ASSERT_EQ(cascades, 5);
+    EXPECT_EQ(renderer_->shadowMaps().cachedCascades(), 0);
+    const Image copied = render(layers, camera, settings);
+    EXPECT_EQ(renderer_->shadowMaps().cachedCascades(), cascades);
+    EXPECT_EQ(drawn.pixels, copied.pixels);
+    std::size_t shaded = 0;
+    for (std::size_t i = 1; i < copied.pixels.size(); i += 4) {
+        shaded += copied.pixels[i] < 128 ? 1 : 0;
+    }
+    EXPECT_GT(shaded, copied.pixels.size() / 4 / 20) << "no shadows to compare";
+    Camera moved = camera;
+    moved.position += camera.axes[0] * 5.0;  // five metres: more than the finest texels
+    moved.geodetic = Ellipsoid::toGeodetic(moved.position);
+    (void)render(layers, moved, settings);
+    EXPECT_LT(renderer_->shadowMaps().cachedCascades(), cascades);
+    settings.sunDirection = sunAt(camera.geodetic, 5 * kDegree, 250 * kDegree);
+    (void)render(layers, camera, settings);
+    EXPECT_EQ(renderer_->shadowMaps().cachedCascades(), 0);
 }
 
 // Terrain shadows of a real DEM (Olinda, 90 m, scripts/fetch-samples) seen from 4 km
 // straight above at a low sun (5°), against a CPU ray march of the same heightfield as
 // the clipmap draws it (each point from the ring level that covers it) from each pixel's
 // ground point towards the sun: at least 98 % of the ground pixels agree. A pixel is
-// shadowed in the render where the shadows take more than half of its radiance (with /
-// without < 0.5). Left out: pixels whose own slope faces away from the sun (N·L < 0.05
-// from the DEM's gradient; no shadow map changes them) and rays that graze the
-// heightfield within 2 m (what the drawn levels of detail cannot decide); the counts are
-// printed. The agreement image goes to build/test-output/shadows_olinda_agreement.png.
+// shadowed in the render where its sun visibility (the shadow maps' filtered term the
+// sunlight is multiplied by, RenderSettings::sunVisibilityOutput) is below one half.
+// (The former criterion, shadows taking half of the total radiance, counted almost no
+// pixel: at a 5° sun the physical sky gives flat ground more light than the sun, so even
+// fully shadowed ground keeps 50–70 % of its radiance; 32 of 638 shadowed pixels were
+// counted.) The rendered light is checked against that visibility on the way: where it
+// is 1 the shadows change nothing, where it is 0 they remove the sunlight. Left out: pixels whose
+// own slope faces away from the sun (N·L < 0.05 from the DEM's gradient; no shadow map changes
+// them) and rays that graze the heightfield within 2 m (what the drawn levels of detail cannot
+// decide); the counts are printed. The agreement image goes to
+// build/test-output/shadows_olinda_agreement.png, the visibility to shadows_olinda_visibility.png.
 TEST_F(ShadowTest, OlindaTerrainShadowsAgreeWithCpuRayMarch) {
     const std::filesystem::path path =
         std::filesystem::path(SYLVA_TEST_DATA_DIR) / "../data/olinda/olinda_dem_utm25s.tif";
@@ -376,6 +447,11 @@ TEST_F(ShadowTest, OlindaTerrainShadowsAgreeWithCpuRayMarch) {
     ASSERT_TRUE(shadowed) << shadowed.error().message;
     const std::vector<float> depth = renderer_->depth();
     const double near = renderer_->near();
+    settings.sunVisibilityOutput = true;
+    Result<Image> visibility =
+        renderer_->render({dem.get(), nullptr, &normals, {}, {}}, evaluator, camera, settings);
+    ASSERT_TRUE(visibility) << visibility.error().message;
+    settings.sunVisibilityOutput = false;
     settings.shadows.enabled = false;
     Result<Image> lit =
         renderer_->render({dem.get(), nullptr, &normals, {}, {}}, evaluator, camera, settings);
@@ -396,7 +472,7 @@ TEST_F(ShadowTest, OlindaTerrainShadowsAgreeWithCpuRayMarch) {
     };
     const double f = 1.0 / std::tan(camera.verticalFov / 2);
     const double aspect = double(settings.width) / settings.height;
-    int counted = 0, agreeing = 0, oracleShadowed = 0, grazing = 0;
+    int counted = 0, agreeing = 0, oracleShadowed = 0, grazing = 0, lightChecked = 0;
     std::vector<std::uint8_t> comparison(std::size_t(settings.width) * settings.height * 4, 255);
     for (int y = 0; y < settings.height; ++y) {
         for (int x = 0; x < settings.width; ++x) {
@@ -444,9 +520,17 @@ TEST_F(ShadowTest, OlindaTerrainShadowsAgreeWithCpuRayMarch) {
                 continue;
             }
             const bool blocked = clearance < 0.0;
+            const float sunVisibility = visibility.value().radiance[index * 4 + 1];
             const float withShadows = shadowed.value().radiance[index * 4 + 1];
             const float withoutShadows = lit.value().radiance[index * 4 + 1];
-            const bool rendered = withShadows < 0.5f * withoutShadows;
+            if (sunVisibility > 0.999f) {
+                EXPECT_NEAR(withShadows, withoutShadows, 2e-3f * withoutShadows) << x << ", " << y;
+                ++lightChecked;
+            } else if (sunVisibility < 0.001f) {
+                EXPECT_LT(withShadows, 0.9f * withoutShadows) << x << ", " << y;
+                ++lightChecked;
+            }
+            const bool rendered = sunVisibility < 0.5f;
             // Comparison image: red = only rendered, blue = only the ray march, grey = both.
             std::uint8_t* pixel = &comparison[index * 4];
             pixel[0] = rendered ? (blocked ? 128 : 255) : 0;
@@ -461,13 +545,16 @@ TEST_F(ShadowTest, OlindaTerrainShadowsAgreeWithCpuRayMarch) {
     std::filesystem::create_directories(outputs);
     (void)ImageWriter::writeRgba8(outputs / "shadows_olinda.png", settings.width, settings.height,
                                   shadowed.value().pixels);
+    (void)ImageWriter::writeRgba8(outputs / "shadows_olinda_visibility.png", settings.width,
+                                  settings.height, visibility.value().pixels);
     (void)ImageWriter::writeRgba8(outputs / "shadows_olinda_agreement.png", settings.width,
                                   settings.height, comparison);
     ASSERT_GT(counted, settings.width * settings.height / 2);
+    EXPECT_GT(lightChecked, counted / 2);
     EXPECT_GT(oracleShadowed, counted / 50) << "too few shadows to test";
-    // 0.98 on the shadow branch (constant sky light); 0.9748 after the merge with the
-    // physical atmosphere (issue 16 asks for 0.98: not met, see docs/benchmarks.md).
-    EXPECT_GE(double(agreeing) / counted, 0.97)
+    // Issue 16: 98 %. 96.56 % without the curved-receiver term of shadows.glsl (741 pixels
+    // shaded that the ray march finds lit), 99.10 % with it (docs/benchmarks.md).
+    EXPECT_GE(double(agreeing) / counted, 0.98)
         << agreeing << " of " << counted << " pixels agree; " << oracleShadowed
         << " shadowed by the ray march; " << grazing << " grazing rays left out";
     std::printf(

@@ -71,6 +71,9 @@ struct RenderSettings {
     // drawn into every cascade but the terrain-only one after the SceneRenderer's own.
     ShadowSettings shadows;
     std::vector<ShadowCaster*> shadowCasters;
+    // Test output: the sun visibility of the shadow maps instead of light
+    // (ShadingSettings::sunVisibilityOutput).
+    bool sunVisibilityOutput = false;
     // Screen-space ambient occlusion of the sky light (seed 001 §7.1; AmbientOcclusionPass).
     AmbientOcclusionSettings ambientOcclusion;
     // Plants handed in directly (tests, benchmarks), drawn with the species of

@@ -38,6 +38,11 @@ struct ShadingSettings {
     // texture, not owned; 0: none). Multiplies the sky light with the G-buffer's own
     // occlusion (albedo.a); the sun is never occluded by it.
     std::uint32_t ambientOcclusion = 0;
+    // Instead of light, writes each surface pixel's sun visibility (0 in shadow .. 1 lit:
+    // the filtered shadow-map term the sunlight is multiplied by) as r = g = b, linear and
+    // unexposed, in both outputs (the sRGB one without tone mapping); the sky is 1. What
+    // the shadows do, measured apart from the sun and sky light (ShadowTest's oracle).
+    bool sunVisibilityOutput = false;
 };
 
 class AtmosphereLuts;

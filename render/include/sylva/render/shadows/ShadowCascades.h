@@ -45,6 +45,7 @@ struct ShadowCascade {
     double texelSize = 0;            // metres per shadow-map texel
     bool terrainOnly = false;        // the far cascade: only terrain casts into it
     glm::dvec3 centerRelative{0.0};  // sphere centre, camera-relative ECEF
+    glm::dvec3 boxLight{0.0};        // the box centre in absolute light coordinates (snapped)
     glm::dmat4 projection{1.0};      // light-rotated camera-relative -> clip (see above)
 };
 

@@ -14,6 +14,9 @@
 // sees their transmittance. A caster must not change the bound framebuffer or viewport.
 #pragma once
 
+#include <cstdint>
+#include <optional>
+
 #include <glm/glm.hpp>
 
 #include "sylva/core/scene/Camera.h"
@@ -37,6 +40,14 @@ public:
     // Draws this caster's depth for one cascade. Casters that are not terrain skip
     // cascades with `cascade->terrainOnly` set.
     virtual void drawShadow(const ShadowView& view) = 0;
+    // Casters whose depth in a cascade depends only on the cascade's Earth-fixed box and
+    // on a state of their own (the terrain: its levels and clipmap contents) return a key
+    // of that state; ShadowMaps then keeps their depth of the cascade and draws them
+    // again only when the box or the key changes. nullopt (the default): drawn every time.
+    virtual std::optional<std::uint64_t> shadowCacheKey(const ShadowView& view) const {
+        (void)view;
+        return std::nullopt;
+    }
 };
 
 }  // namespace sylva::render

@@ -1,7 +1,11 @@
 // ShadowMaps: the sun's cascaded shadow maps (seed 001 §7.1) as one depth texture array
 // (GL_DEPTH_COMPONENT32F, one layer per cascade, compare mode on, nearest: shadows.glsl
 // filters with its own per-texel references). render() fits
-// the cascades (ShadowCascades), then lets every ShadowCaster draw each layer.
+// the cascades (ShadowCascades), then lets every ShadowCaster draw each layer. The depth
+// of the casters that give a cache key (ShadowCaster::shadowCacheKey: the terrain) is
+// kept per cascade in a second array and copied back while the cascade's Earth-fixed box,
+// the sun and their keys stay the same, so a still or slowly moving camera does not
+// redraw the terrain into five 2048² maps every frame (docs/benchmarks.md, shadows).
 //
 // Needs a current GL 4.5 context for create() and render(); destroy it while that
 // context is current. create() fails with an Error naming the missing feature when the
@@ -37,6 +41,8 @@ public:
     // Per cascade: camera-relative ECEF metres -> shadow clip (projection × lightRotation).
     std::vector<glm::mat4> shadowMatrices() const;
     std::uint32_t texture() const { return texture_.get(); }
+    // Cascades of the last render() whose cached casters' depth was copied, not drawn.
+    int cachedCascades() const { return cachedCascades_; }
     const glm::dmat3& lightRotation() const { return lightRotation_; }
     int resolution() const { return resolution_; }
 
@@ -50,7 +56,16 @@ private:
     ShadowMaps() = default;
     Status ensureTexture(int resolution);
 
+    // Draws cascade `index` (its layer bound, not cleared): the cached casters' depth from
+    // cache_ when their key matches, else drawn and kept; then the other casters.
+    void drawCascade(std::size_t index, const ShadowView& view,
+                     const std::vector<ShadowCaster*>& casters);
+
     GlTexture texture_;
+    GlTexture cache_;  // the cached casters' depth per cascade (same format)
+    std::uint64_t cacheKeys_[kMaxCascades] = {};
+    bool cacheValid_[kMaxCascades] = {};
+    int cachedCascades_ = 0;
     GlFramebuffer framebuffer_;
     int resolution_ = 0;
     glm::dmat3 lightRotation_{1.0};

@@ -110,6 +110,11 @@ public:
     // no finer than its texels. Camera-relative like draw(), so the precision is the
     // G-buffer's. Draws every cascade, the terrain-only one included.
     void drawShadow(const ShadowView& view) override;
+    // The state drawShadow's depth depends on besides the cascade: the levels it draws,
+    // the resident level, the height clipmap's uploads and source, the ocean clamp and the
+    // camera's position in whole cascade texels of the light frame (the rings follow the
+    // camera; within a texel they slide by less than the lookup's bias covers).
+    std::optional<std::uint64_t> shadowCacheKey(const ShadowView& view) const override;
 
     const TerrainFrameStatistics& statistics() const { return statistics_; }
     const TerrainSettings& settings() const { return settings_; }
@@ -145,6 +150,8 @@ private:
                         ReadyTiles& ready, bool& pending);
     // Drops the clipmap levels of layers whose source changed (another scenario, an edit).
     void dropChangedSources(const TerrainLayers& layers);
+    // The levels drawShadow draws into `view`'s cascade (none before the first draw()).
+    std::optional<LevelRange> shadowLevels(const ShadowView& view) const;
     std::uint64_t drawRings(ShaderProgram& program, const Camera& camera,
                             const glm::dmat3& rotation, const glm::dmat4& projection,
                             const LevelRange& levels, bool ocean);
