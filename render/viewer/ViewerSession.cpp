@@ -459,6 +459,12 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
         // the texels while interacting, the project's resolution in screenshots.
         settings.shadows.resolution =
             std::min(settings.shadows.resolution, kInteractiveShadowResolution);
+        // With a budget the vegetation cannot meet any more (its coarsest level), the
+        // screen-space ambient occlusion goes too: at 1280x720 on llvmpipe it was the
+        // largest pass of a frame (1.1-4.3 s of 2.7-6 s at load 8-11, issue 20's trace).
+        if (options_.budgetMilliseconds > 0 && budget_.level() == FrameBudget::kLevels - 1) {
+            settings.ambientOcclusion.enabled = false;
+        }
     }
     const bool moved = dirty_;
     finishedAtFrame_ = scheduler_->finishedTasks();
