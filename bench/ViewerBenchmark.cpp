@@ -221,12 +221,41 @@ Result<ViewerBenchmarkResult> runViewerBenchmark(const ViewerBenchmarkOptions& o
                          record.moved ? "moved" : "still", record.pending ? ", pending" : "",
                          record.level, frame.levelsDrawn, frame.levelsWanted, holes.pixels,
                          holes.firstX, holes.firstY);
+            if (frame.statistics != nullptr) {
+                // Why the frame is pending, and where its time went.
+                const render::RenderStatistics& s = *frame.statistics;
+                std::fprintf(options.trace,
+                             "  height %.2f m, ground %.2f m (level %d), terrain waiting %d, "
+                             "wanted %d..%d, canopy waiting %d, instance tiles %zu/%zu, "
+                             "species pending %zu, queued %zu; update %.1f ms, terrain %.1f ms, "
+                             "vegetation %.1f ms, canopy %.1f ms, shadows %.1f ms, ssao %.1f ms, "
+                             "uploaded %.2f MB\n",
+                             frame.camera->geodetic.height, s.groundHeight, s.groundLevel,
+                             s.terrain.waitingLevel, s.terrain.wanted.coarsest,
+                             s.terrain.wanted.finest, s.farField.waiting ? 1 : 0,
+                             s.vegetationStream.readyTiles, s.vegetationStream.wantedTiles,
+                             s.pendingSpecies, frame.queuedTiles, s.terrain.updateSeconds * 1e3,
+                             s.terrainPassSeconds * 1e3, s.vegetationPassSeconds * 1e3,
+                             s.farFieldPassSeconds * 1e3, s.shadowPassSeconds * 1e3,
+                             s.ambientOcclusionPassSeconds * 1e3,
+                             double(s.terrain.uploadedBytes) / (1 << 20));
+            }
             std::fflush(options.trace);
         }
     };
     render::Viewer viewer(batch, host, std::move(viewerOptions));
     if (Status ran = viewer.run(); !ran) {
         return ran.error();
+    }
+    if (Result<render::RenderSetup> setup = batch.setup(); options.trace != nullptr && setup) {
+        // Where the workers' time went (tiles produced per source, seconds of produce()).
+        for (const SchedulerStatistics& source :
+             batch.scheduler(setup.value()).statisticsPerSource()) {
+            std::fprintf(options.trace,
+                         "source %s: %zu produced, %zu from disk, %zu hits, %.1f s producing\n",
+                         source.name.c_str(), source.misses, source.diskHits, source.hits,
+                         source.produceSeconds);
+        }
     }
     ViewerBenchmarkResult result;
     result.metrics = metricsOf(frames, options.budgetMilliseconds);

@@ -182,6 +182,7 @@ Result<TilePointer> Scheduler::run(std::unique_lock<std::mutex>& lock, const Tas
 
     lock.lock();
     tasks_.erase(id);
+    ++finished_;
     bool report = false;
     auto cache = caches_.find(id.hash);
     // A task of an invalidated (or dropped) hash may have read stale inputs: discard.
@@ -593,6 +594,11 @@ std::size_t Scheduler::budgetBytes() const {
 std::size_t Scheduler::peakCachedBytes() const {
     std::lock_guard lock(mutex_);
     return peakBytes_;
+}
+
+std::uint64_t Scheduler::finishedTasks() const {
+    std::lock_guard lock(mutex_);
+    return finished_;
 }
 
 std::size_t Scheduler::queuedTasks() const {

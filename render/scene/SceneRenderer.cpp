@@ -210,10 +210,12 @@ Result<LevelRange> SceneRenderer::prepareTerrain(const TerrainLayers& layers,
     if (!settings.waitForTiles) {
         levels = terrain_->visibleLevels(camera, std::max(aboveTerrain, kEstimatedClearance),
                                          settings.height);
-        if (statistics_.groundLevel < levels.finest) {
-            // A coarser level's ground: the camera may stand under it on finer terrain.
-            aboveTerrain = std::max(aboveTerrain, kEstimatedClearance);
-        }
+        // The nadir probe's level is not the level the camera was placed on: a coarser
+        // one's ground may pass over a camera on finer terrain, a finer one's (ready
+        // before the levels between) under a walker the viewer placed on the finest
+        // resident level. Estimate the clearance rather than fail the frame; the viewer
+        // keeps its cameras above the ground it draws.
+        aboveTerrain = std::max(aboveTerrain, kEstimatedClearance);
     }
     if (aboveTerrain <= 0.0) {
         char buffer[160];

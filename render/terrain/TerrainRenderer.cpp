@@ -302,6 +302,7 @@ Result<LevelRange> TerrainRenderer::update(
     if (resident < wanted.coarsest) {
         resident = fallback;  // rings drawn without blending: one level is enough
     }
+    statistics_.residentLevel = resident;
     if (rooted && resident >= 0) {
         const int standing =
             standingLevel(*layers.elevation, provider, camera, resident, blendLevel, fallback);

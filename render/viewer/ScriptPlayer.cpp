@@ -115,7 +115,7 @@ Status ScriptPlayer::waitTiles(double timeoutSeconds) {
         if (!session_.report().pending) {
             return {};
         }
-        session_.waitForTiles(0.05);
+        (void)session_.waitForTiles(1.0);  // a tile arrived, or half a second passed
     } while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() <
              timeoutSeconds);
     return Error{"tiles still pending after " + std::to_string(static_cast<int>(timeoutSeconds)) +

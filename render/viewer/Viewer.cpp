@@ -179,9 +179,10 @@ private:
                 show();
                 continue;
             }
-            if (!session_.changed()) {
-                // Only tiles arriving: let a worker finish one rather than redraw at once.
-                session_.waitForTiles(0.03);
+            if (!session_.changed() && !session_.waitForTiles(0.03)) {
+                // Only tiles arriving, none new yet (or the last frame just ended): poll
+                // the input again rather than redraw the same view.
+                continue;
             }
             (void)session_.renderFrame(false);
             show();

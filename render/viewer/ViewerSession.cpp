@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <thread>
 
 #include "sylva/core/geo/SolarPosition.h"
 #include "sylva/core/image/ImageComparison.h"
@@ -23,6 +24,10 @@ constexpr double kMidsummerNoonUtc = 1718971200.0;
 constexpr double kFlyClearance = 1.0;
 // Pixels between the two halves of a side-by-side comparison.
 constexpr int kSideBySideGap = 4;
+// A still view with work pending (plant assets, tiles) is redrawn at least this often.
+constexpr double kStillRedrawSeconds = 0.5;
+// Texels per side of each shadow cascade in interactive frames (at most).
+constexpr int kInteractiveShadowResolution = 1024;
 
 const char* modeName(NavigationMode mode) {
     switch (mode) {
@@ -199,9 +204,12 @@ std::optional<double> ViewerSession::groundHeight(double latitude, double longit
     const auto clamped = [&](double ground) {
         return setup_.settings.ocean ? std::max(ground, 0.0) : ground;
     };
-    // No finer than the level the renderer last drew from, so a walker stands on the
-    // terrain shown (refined as finer levels become resident), never under it.
-    const int resident = renderer_->statistics().terrain.textureLevel;
+    // No finer than the finest level resident (every coarser one brought up too), so the
+    // renderer can draw from the level the camera stands on (its ground is below the eye)
+    // and the walker climbs with the levels as they arrive. Not the level last drawn from
+    // (textureLevel): that is lowered to a level whose ground is below the camera, so a
+    // walker held on it stood under every finer level on a hill and never refined.
+    const int resident = renderer_->statistics().terrain.residentLevel;
     const int finest =
         frames_ > 0 && resident >= 0 ? std::min(levels.finest, resident) : levels.finest;
     for (int level = finest; level >= 0 && !wait; --level) {
@@ -445,7 +453,21 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
     vegetation.quality *= qualityScale_;
     // Screenshots are full detail (as a batch image); interactive frames fit the budget.
     settings.vegetation = waitForTiles ? vegetation : budget_.settingsFor(vegetation);
+    if (!waitForTiles) {
+        // The shadow cascades were half of an interactive frame on llvmpipe (issue 20's
+        // trace: ~300 of ~600 ms at 320x180 with five 2048² depth passes); a quarter of
+        // the texels while interacting, the project's resolution in screenshots.
+        settings.shadows.resolution =
+            std::min(settings.shadows.resolution, kInteractiveShadowResolution);
+        // With a budget the vegetation cannot meet any more (its coarsest level), the
+        // screen-space ambient occlusion goes too: at 1280x720 on llvmpipe it was the
+        // largest pass of a frame (1.1-4.3 s of 2.7-6 s at load 8-11, issue 20's trace).
+        if (options_.budgetMilliseconds > 0 && budget_.level() == FrameBudget::kLevels - 1) {
+            settings.ambientOcclusion.enabled = false;
+        }
+    }
     const bool moved = dirty_;
+    finishedAtFrame_ = scheduler_->finishedTasks();
     const auto start = std::chrono::steady_clock::now();
     Result<Image> image = renderScenario(layers_, settings);
     RenderStatistics statistics = renderer_->statistics();
@@ -462,6 +484,7 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     dirty_ = false;
     ++frames_;
+    lastFrameEnd_ = std::chrono::steady_clock::now();
     if (!image) {
         report_.pending = false;
         showError(image.error().message);
@@ -478,6 +501,12 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
     report_.levelsWanted = statistics.terrain.wanted.finest;
     report_.queuedTiles = scheduler_->queuedTasks();
     report_.instancesDrawn = statistics.vegetation.drawnInstances;
+    if (!waitForTiles && !pending) {
+        // The frame made a finer level resident: the walker moves onto its ground in the
+        // next frame (settleOnGround), so the view is not settled yet.
+        const std::optional<double> placed = placedHeight(camera_, false);
+        pending = placed && std::abs(*placed - camera_.geodetic.height) > 1e-4;
+    }
     report_.pending = pending;
     FrameMeasurement measurement;
     measurement.frameMilliseconds = milliseconds;
@@ -498,6 +527,8 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
             frame.instancesDrawn = report_.instancesDrawn;
             frame.levelsDrawn = report_.levelsDrawn;
             frame.levelsWanted = report_.levelsWanted;
+            frame.queuedTiles = report_.queuedTiles;
+            frame.statistics = &statistics;
             frame.camera = &camera_;
             depth_ = renderer_->depth();
             frame.depth = &depth_;
@@ -510,8 +541,39 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
     return {};
 }
 
-void ViewerSession::waitForTiles(double seconds) {
-    scheduler_->waitForProgress(std::chrono::milliseconds(static_cast<int>(seconds * 1000)));
+bool ViewerSession::waitForTiles(double seconds) {
+    // A still view is redrawn when a tile finished since the last frame began, but not
+    // sooner after the last frame than that frame took: while only tiles arrive the
+    // render thread (and llvmpipe's threads) take at most about half the CPU, the rest
+    // is the workers'. Redrawing each 50 ms starved them (issue 20: ~2 tiles/s while a
+    // still 320x180 frame took 0.6 s). At the latest every kStillRedrawSeconds, for the
+    // plant assets built outside the Scheduler.
+    using Clock = std::chrono::steady_clock;
+    const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                        std::chrono::duration<double>(seconds));
+    const auto earliest =
+        lastFrameEnd_ + std::chrono::duration_cast<Clock::duration>(
+                            std::chrono::duration<double, std::milli>(report_.milliseconds));
+    const auto latest = lastFrameEnd_ + std::chrono::duration_cast<Clock::duration>(
+                                            std::chrono::duration<double>(kStillRedrawSeconds));
+    while (true) {
+        const auto now = Clock::now();
+        if (now >= latest || (now >= earliest && scheduler_->finishedTasks() != finishedAtFrame_)) {
+            return true;
+        }
+        if (now >= end) {
+            return false;
+        }
+        const auto step =
+            std::min({end, latest, std::max(earliest, now + std::chrono::milliseconds(1))}) - now;
+        if (now < earliest) {
+            std::this_thread::sleep_for(step);
+        } else {
+            scheduler_->waitForProgress(
+                std::chrono::duration_cast<std::chrono::milliseconds>(step) +
+                std::chrono::milliseconds(1));
+        }
+    }
 }
 
 void ViewerSession::watchFiles() {

@@ -100,8 +100,9 @@ public:
     bool pollFiles();
     // Renders with every tile waited for and writes the image (PNG) atomically.
     Status screenshot(const std::filesystem::path& path);
-    // Sleeps until a worker finishes a tile or `seconds` pass (instead of spinning).
-    void waitForTiles(double seconds);
+    // Sleeps until a tile finished since the last frame or `seconds` pass (instead of
+    // spinning); returns whether one did, i.e. whether a redraw can show something new.
+    bool waitForTiles(double seconds);
 
     const Image& image() const { return image_; }
     const FrameReport& report() const { return report_; }
@@ -157,6 +158,8 @@ private:
     FileWatch watch_;
     std::size_t reloads_ = 0;
     std::size_t frames_ = 0;
+    std::uint64_t finishedAtFrame_ = 0;  // Scheduler::finishedTasks() when the last frame began
+    std::chrono::steady_clock::time_point lastFrameEnd_{};
     double qualityScale_ = 1.0;
     bool colourLayer_ = true;
     bool vegetationLayer_ = true;

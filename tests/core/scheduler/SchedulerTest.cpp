@@ -435,6 +435,30 @@ TEST(Scheduler, FailureIsReportedOnceAndRepeatedWithoutRetry) {
     EXPECT_EQ(scheduler.totals().failures, 2u);
 }
 
+// The viewer redraws a still view only when finishedTasks() changed: it counts every
+// task that finished (produced, nested inputs included, or failed), not cache hits.
+TEST(Scheduler, FinishedTasksCountsEveryProducedOrFailedTile) {
+    TestSource base("base", 1);
+    TestSource top("top", 2, {&base});
+    TestSource broken("broken", 3);
+    broken.fail = true;
+    Scheduler scheduler(options(2));
+    EXPECT_EQ(scheduler.finishedTasks(), 0u);
+    for (int x = 0; x < 3; ++x) {
+        scheduler.request(top, TileKey{2, 0, x, 1}, 0);  // each also produces base's tile
+    }
+    scheduler.request(broken, TileKey{2, 0, 0, 1}, 0);
+    scheduler.waitIdle();
+    EXPECT_EQ(scheduler.finishedTasks(), 7u);
+    for (int x = 0; x < 3; ++x) {
+        EXPECT_EQ(scheduler.tryGet(top, TileKey{2, 0, x, 1}, 0).state, TileLookup::State::Ready);
+    }
+    (void)scheduler.tile(top, TileKey{2, 0, 0, 1});
+    EXPECT_EQ(scheduler.finishedTasks(), 7u) << "cache hits finish no task";
+    (void)scheduler.tile(top, TileKey{2, 0, 5, 1});
+    EXPECT_EQ(scheduler.finishedTasks(), 9u);
+}
+
 TEST(Scheduler, NestedDependenciesWithManyWorkersNeverDeadlock) {
     // A diamond chain: every top tile needs the same few shared inputs at each depth,
     // with more workers than cores and requests from several threads at once.

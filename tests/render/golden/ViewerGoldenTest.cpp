@@ -12,14 +12,18 @@
 // - a swipe between the two scenarios with the atmosphere layer off (`viewer_swipe`).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 
 #include "GoldenImage.h"
 #include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/scene/ViewerScript.h"
+#include "sylva/core/scheduler/Scheduler.h"
+#include "sylva/core/terrain/ElevationQuery.h"
 #include "sylva/dsl/CameraBlockEditor.h"
 #include "sylva/dsl/ProjectLoader.h"
 #include "sylva/render/batch/BatchRenderer.h"
@@ -79,8 +83,10 @@ std::filesystem::path prepare(const std::string& name, const std::string& script
     return folder;
 }
 
-// Runs the script of `folder` in a headless viewer; returns the viewer's status.
-Status runViewer(const std::filesystem::path& folder) {
+// Runs the script of `folder` in a headless viewer (`onFrame` sees every interactive
+// frame); returns the viewer's status.
+Status runViewer(const std::filesystem::path& folder,
+                 std::function<void(const ViewerFrame&)> onFrame = {}) {
     TestHost host(folder / "viewer.sylva");
     Result<std::vector<ProjectModel>> models = host.loadProject();
     if (!models) {
@@ -100,6 +106,7 @@ Status runViewer(const std::filesystem::path& folder) {
     ViewerOptions viewerOptions;
     viewerOptions.script = std::move(script.value());
     viewerOptions.closeAfterScript = true;
+    viewerOptions.onFrame = std::move(onFrame);
     Viewer viewer(batch, host, viewerOptions);
     return viewer.run();
 }
@@ -225,6 +232,67 @@ TEST(ViewerGolden, SwipeBetweenScenariosWithALayerOff) {
     golden::checkGolden("viewer_swipe", kWidth, kHeight, swipe);
     // Top-left is sky: black without the atmosphere.
     EXPECT_LT(swipe[0] + swipe[1] + swipe[2], 30);
+}
+
+// Issue 20: a walker standing still reaches full detail. The viewer once placed the walker
+// on the level it last drew from, and the renderer drew from the finest level whose ground
+// was below the walker: on a hill every finer level's ground was above it, so the drawn
+// level stayed coarse forever (the bench: level 8 of 24 for minutes), and once the nadir
+// tile of the finest level arrived the frame failed ("camera below the terrain"). Now
+// `wait-tiles` must end (nothing pending) with the finest wanted level drawn and the eye
+// 1.7 m over that level's ground (ElevationQuery on its own Scheduler: the oracle).
+TEST(ViewerGolden, AStillWalkerReachesTheFinestLevelOnItsGround) {
+    const std::filesystem::path folder =
+        prepare("walker", "camera aircraft\nmode walk\nwait-tiles\n");
+    std::vector<ViewerFrame> frames;
+    Camera last;
+    const Status ran = runViewer(folder, [&](const ViewerFrame& frame) {
+        frames.push_back(frame);
+        last = *frame.camera;
+    });
+    ASSERT_TRUE(ran) << ran.error().message;
+    ASSERT_FALSE(frames.empty());
+    const ViewerFrame& final = frames.back();
+    EXPECT_FALSE(final.pending);
+    EXPECT_EQ(final.levelsWanted, 24);
+    EXPECT_EQ(final.levelsDrawn, final.levelsWanted)
+        << "after " << frames.size() << " frames the terrain is drawn from level "
+        << final.levelsDrawn;
+    // The drawn level rose monotonically once the walker stood still (no re-ordering).
+    for (std::size_t i = 2; i < frames.size(); ++i) {
+        EXPECT_GE(frames[i].levelsDrawn, frames[i - 1].levelsDrawn) << "frame " << i;
+    }
+
+    dsl::LoadResult loaded = dsl::loadProject(folder / "viewer.sylva");
+    ASSERT_FALSE(loaded.hasErrors()) << loaded.render();
+    BatchRenderer batch;
+    ASSERT_TRUE(batch.setProject(loaded.scenarios));
+    Result<TerrainLayers> layers = batch.project().terrainLayers("natural");
+    ASSERT_TRUE(layers) << layers.error().message;
+    Scheduler tiles;
+    const ElevationQuery query(*layers->elevation, tiles);
+    Result<double> ground =
+        query.groundHeight(last.geodetic.latitude, last.geodetic.longitude, final.levelsWanted);
+    ASSERT_TRUE(ground) << ground.error().message;
+    // The spot is one where the old placement stalled: some coarse level's ground lies
+    // more than the eye height under every finer level's (a hill seen coarsely).
+    bool stalls = false;
+    std::string grounds;
+    for (int level = 4; level < final.levelsWanted && !stalls; ++level) {
+        const double coarse =
+            query.groundHeight(last.geodetic.latitude, last.geodetic.longitude, level).value();
+        double finer = 1e30;
+        for (int other = level + 1; other <= final.levelsWanted; ++other) {
+            finer = std::min(
+                finer,
+                query.groundHeight(last.geodetic.latitude, last.geodetic.longitude, other).value());
+        }
+        grounds += " " + std::to_string(level) + ":" + std::to_string(coarse);
+        stalls = std::max(coarse, 0.0) + 1.7 < std::max(finer, 0.0);
+    }
+    EXPECT_TRUE(stalls) << "grounds by level:" << grounds;
+    // The project has an ocean: the walker stands on the sea surface there.
+    EXPECT_NEAR(last.geodetic.height, std::max(ground.value(), 0.0) + 1.7, 1e-3);
 }
 
 }  // namespace

@@ -136,6 +136,10 @@ public:
     void setBudgetBytes(std::size_t bytes);
     std::size_t peakCachedBytes() const;
     std::size_t queuedTasks() const;
+    // Tasks finished so far (a tile cached or failed, on any thread): a viewer redraws a
+    // still view only when this changed, so its frames do not take the CPU the workers
+    // need while nothing new can be shown.
+    std::uint64_t finishedTasks() const;
     int workerCount() const { return static_cast<int>(workers_.size()); }
 
 private:
@@ -206,6 +210,7 @@ private:
     std::uint64_t sequence_ = 0;
     std::uint64_t wantedRound_ = 0;   // setWanted/cancelAll lists processed by the manager
     std::uint64_t postedRounds_ = 0;  // setWanted/cancelAll lists posted (≥ wantedRound_)
+    std::uint64_t finished_ = 0;      // tasks finished (finishedTasks())
     std::uint64_t useClock_ = 0;
     std::size_t cachedBytes_ = 0;
     std::size_t peakBytes_ = 0;

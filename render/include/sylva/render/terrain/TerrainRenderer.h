@@ -64,6 +64,12 @@ struct TerrainFrameStatistics {
     // The finest clipmap level resident for the camera: rings finer than it sample it
     // (interactive frames after a jump; equals levels.finest otherwise).
     int textureLevel = -1;
+    // The finest level brought up this frame with every coarser one (interactive: before
+    // textureLevel is lowered to a level whose ground is below the camera). A camera the
+    // viewer places stands on this level's ground, so textureLevel can follow it up: placed
+    // on textureLevel instead, a walker on a hill stood under every finer level's ground
+    // and textureLevel never rose (issue 20, the bench's "level 8 of 24").
+    int residentLevel = -1;
     std::uint64_t triangles = 0;
     std::uint64_t uploadedBytes = 0;
     double updateSeconds = 0;  // CPU clipmap update including tile evaluation

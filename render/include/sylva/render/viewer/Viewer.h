@@ -58,8 +58,12 @@ struct ViewerFrame {
     bool moved = false;       // the view changed since the previous frame
     int budgetLevel = 0;      // FrameBudget level used (0 = full detail)
     std::size_t instancesDrawn = 0;
-    int levelsDrawn = 0;   // finest terrain ring level drawn
-    int levelsWanted = 0;  // finest terrain ring level the view wants
+    int levelsDrawn = 0;          // finest terrain ring level drawn
+    int levelsWanted = 0;         // finest terrain ring level the view wants
+    std::size_t queuedTiles = 0;  // tasks queued in the Scheduler after the frame
+    // The frame's statistics (why it is pending: terrain waitingLevel, groundLevel, the
+    // canopy, instance tiles, plant assets; the passes' times). Valid during the call.
+    const RenderStatistics* statistics = nullptr;
     const Camera* camera = nullptr;
     const std::vector<float>* depth = nullptr;  // reversed-Z, rows top to bottom
     double near = 1.0;                          // distance = near / depth
