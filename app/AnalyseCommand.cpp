@@ -82,6 +82,33 @@ std::optional<std::vector<float>> screenHeights(const std::string& what, const E
     return heights;
 }
 
+// The window's cells of a row-major grid `width` cells wide (empty stays empty).
+std::vector<float> croppedCells(const std::vector<float>& cells, int width,
+                                const CellWindow& window) {
+    std::vector<float> out;
+    if (cells.empty())
+        return out;
+    out.reserve(std::size_t(window.width) * std::size_t(window.height));
+    for (int row = window.row; row < window.row + window.height; ++row) {
+        const auto first = cells.begin() + std::ptrdiff_t(row) * width + window.col;
+        out.insert(out.end(), first, first + window.width);
+    }
+    return out;
+}
+
+// The window of an elevation grid as a grid of its own.
+ElevationGrid croppedGrid(const ElevationGrid& grid, const CellWindow& window) {
+    ElevationGrid out;
+    out.crsWkt = grid.crsWkt;
+    out.geometry = grid.geometry;
+    out.geometry.originX += window.col * grid.geometry.cellWidth;
+    out.geometry.originY -= window.row * grid.geometry.cellHeight;
+    out.geometry.width = window.width;
+    out.geometry.height = window.height;
+    out.heights = croppedCells(grid.heights, grid.geometry.width, window);
+    return out;
+}
+
 // Writes one date of a shadow study: the sun-hours GeoTIFF, a PNG per frame with the sun
 // up and the contact sheet; the paths written go to `written`. False after reporting.
 bool writeShadowDay(const ShadowStudy& study, const ElevationGrid& grid,
@@ -129,15 +156,20 @@ std::optional<nlohmann::ordered_json> runShadowStudy(const ShadowStudy& study,
                                                      const std::filesystem::path& outFolder) {
     const auto start = std::chrono::steady_clock::now();
     const std::string what = "shadow_study '" + study.name + "'";
-    auto grid = readElevationGrid(study.demPath, study.grid);
-    if (!grid) {
-        reportError(what + ": " + grid.error().message);
+    const bool grown = study.casterGrid.width > 0;
+    auto ground = readElevationGrid(study.demPath, grown ? study.casterGrid : study.grid);
+    if (!ground) {
+        reportError(what + ": " + ground.error().message);
         return std::nullopt;
     }
-    auto screens = screenHeights(what, *grid, study.screens);
-    if (!screens)
+    auto casterScreens = screenHeights(what, *ground, study.screens);
+    if (!casterScreens)
         return std::nullopt;
-    const ShadowCaster caster(*grid, *screens);
+    const ShadowCaster caster(*ground, *casterScreens, grown ? study.casterWindow : CellWindow{});
+    // The study's own grid and screens, for the maps.
+    const ElevationGrid grid = croppedGrid(*ground, caster.window());
+    const std::vector<float> screens =
+        croppedCells(*casterScreens, ground->geometry.width, caster.window());
     const std::filesystem::path folder = outFolder / study.output;
     std::error_code error;
     std::filesystem::create_directories(folder, error);
@@ -147,7 +179,7 @@ std::optional<nlohmann::ordered_json> runShadowStudy(const ShadowStudy& study,
         std::fprintf(stderr, "%s: %s, %d x %d cells of %.1f m\n", what.c_str(), date.c_str(),
                      study.grid.width, study.grid.height, study.grid.cellWidth);
         auto day = computeShadowDay(caster, study, date);
-        if (!day || !writeShadowDay(study, *grid, *screens, *day, folder, written)) {
+        if (!day || !writeShadowDay(study, grid, screens, *day, folder, written)) {
             if (!day)
                 reportError(what + ": " + day.error().message);
             for (const std::filesystem::path& path : written)

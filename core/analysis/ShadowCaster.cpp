@@ -23,9 +23,15 @@ double nextHalfLine(double position, double rate) {
 
 }  // namespace
 
-ShadowCaster::ShadowCaster(const ElevationGrid& ground, std::vector<float> screens)
-    : ground_(ground), screens_(std::move(screens)) {
+ShadowCaster::ShadowCaster(const ElevationGrid& ground, std::vector<float> screens,
+                           CellWindow window)
+    : ground_(ground), screens_(std::move(screens)), window_(window) {
     SYLVA_CHECK(screens_.empty() || screens_.size() == ground_.heights.size());
+    const GridGeometry& g = ground_.geometry;
+    if (window_.width == 0)
+        window_ = {0, 0, g.width, g.height};
+    SYLVA_CHECK(window_.col >= 0 && window_.row >= 0 && window_.width > 0 && window_.height > 0 &&
+                window_.col + window_.width <= g.width && window_.row + window_.height <= g.height);
     highest_ = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < ground_.heights.size(); ++i)
         if (!std::isnan(ground_.heights[i]))
@@ -79,14 +85,14 @@ bool ShadowCaster::sunlit(double col, double row, double azimuth, double elevati
 }
 
 std::vector<std::uint8_t> ShadowCaster::sunlitCells(double azimuth, double elevation) const {
-    const GridGeometry& g = ground_.geometry;
-    std::vector<std::uint8_t> lit(std::size_t(g.width) * std::size_t(g.height), 0);
+    const CellWindow& w = window_;
+    std::vector<std::uint8_t> lit(std::size_t(w.width) * std::size_t(w.height), 0);
     if (!(elevation > 0.0))
         return lit;
-    WorkerPool::shared().run(g.height, [&](int row) {
-        for (int col = 0; col < g.width; ++col)
-            lit[std::size_t(row) * std::size_t(g.width) + std::size_t(col)] =
-                sunlit(col, row, azimuth, elevation) ? 1 : 0;
+    WorkerPool::shared().run(w.height, [&](int row) {
+        for (int col = 0; col < w.width; ++col)
+            lit[std::size_t(row) * std::size_t(w.width) + std::size_t(col)] =
+                sunlit(w.col + col, w.row + row, azimuth, elevation) ? 1 : 0;
     });
     return lit;
 }

@@ -160,6 +160,45 @@ Status readGrid(const ProjectModel& model, const BlockReader& reader, const Rast
     return Status::success();
 }
 
+// The caster grid: the grid grown by `shadow_reach` on every side in whole cells, clipped to
+// the DEM (a shadow needs ground to fall from).
+Status readCasterGrid(const BlockReader& reader, const RasterInfo& dem, bool force,
+                      ShadowStudy& study) {
+    const double reach = reader.optionalNumber("shadow_reach").value_or(5000.0);
+    const GridGeometry& g = study.grid;
+    const GridGeometry& d = dem.geometry;
+    // Whole cells of the grid between its edges and the DEM's, at most `reach`.
+    const auto cells = [](double room, double size, double reachCells) {
+        return int(std::max(0.0, std::min(std::floor(room / size + 1e-9), reachCells)));
+    };
+    const double acrossX = std::ceil(reach / g.cellWidth - 1e-9);
+    const double acrossY = std::ceil(reach / g.cellHeight - 1e-9);
+    const int west = cells(g.originX - d.originX, g.cellWidth, acrossX);
+    const int east = cells(d.originX + d.width * d.cellWidth - (g.originX + g.width * g.cellWidth),
+                           g.cellWidth, acrossX);
+    const int north = cells(d.originY - g.originY, g.cellHeight, acrossY);
+    const int south =
+        cells(g.originY - g.height * g.cellHeight - (d.originY - d.height * d.cellHeight),
+              g.cellHeight, acrossY);
+    GridGeometry caster = g;
+    caster.originX -= west * g.cellWidth;
+    caster.originY += north * g.cellHeight;
+    caster.width += west + east;
+    caster.height += north + south;
+    const double total = double(caster.width) * double(caster.height);
+    if (!force && total > ShadowStudy::kMaxCasterCells) {
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "the study's grid grown by shadow_reach has %.0f cells, more than %.0f: "
+                      "lower shadow_reach or coarsen the resolution (or --force)",
+                      total, ShadowStudy::kMaxCasterCells);
+        return Error{reader.where("shadow_reach") + "shadow_study '" + study.name + "': " + text};
+    }
+    study.casterGrid = caster;
+    study.casterWindow = {west, north, g.width, g.height};
+    return Status::success();
+}
+
 }  // namespace
 
 Result<ShadowStudy> planShadowStudy(const ProjectModel& model, const Block& block, bool force) {
@@ -179,9 +218,13 @@ Result<ShadowStudy> planShadowStudy(const ProjectModel& model, const Block& bloc
     study.crsWkt = info->crsWkt;
     if (Status ok = readGrid(model, reader, *info, force, study); !ok)
         return ok.error();
+    if (Status ok = readCasterGrid(reader, *info, force, study); !ok)
+        return ok.error();
     study.sunHoursTarget = reader.optionalNumber("sun_hours_target").value_or(2.0);
     const std::string what = "shadow_study '" + study.name + "'";
-    if (Status ok = readScreens(model, reader, what, study.grid, study.crsWkt, study.screens); !ok)
+    // Screens over the caster grid: a wood or a building outside the extent casts too.
+    if (Status ok = readScreens(model, reader, what, study.casterGrid, study.crsWkt, study.screens);
+        !ok)
         return ok.error();
     if (Status ok = readDates(reader, study); !ok)
         return ok.error();
@@ -227,7 +270,8 @@ Result<ShadowDay> computeShadowDay(const ShadowCaster& caster, const ShadowStudy
         return midnightUtc.error();
     ShadowDay out;
     out.date = date;
-    const std::size_t cells = caster.ground().heights.size();
+    const CellWindow& window = caster.window();
+    const std::size_t cells = std::size_t(window.width) * std::size_t(window.height);
     out.sunHours.assign(cells, 0.0f);
     const double step = study.stepMinutes / 60.0;  // hours
     const int count = int(std::floor((study.dayEndHours - study.dayStartHours) / step + 1e-9)) + 1;
@@ -250,9 +294,11 @@ Result<ShadowDay> computeShadowDay(const ShadowCaster& caster, const ShadowStudy
             out.sunHours[i] += frame.lit[i] ? float(weight) : 0.0f;
         out.frames.push_back(std::move(frame));
     }
-    for (std::size_t i = 0; i < cells; ++i)
-        if (std::isnan(caster.ground().heights[i]))
-            out.sunHours[i] = std::numeric_limits<float>::quiet_NaN();
+    for (int row = 0; row < window.height; ++row)
+        for (int col = 0; col < window.width; ++col)
+            if (std::isnan(caster.ground().at(window.col + col, window.row + row)))
+                out.sunHours[std::size_t(row) * std::size_t(window.width) + std::size_t(col)] =
+                    std::numeric_limits<float>::quiet_NaN();
     summarizeSite(study, out);
     return out;
 }

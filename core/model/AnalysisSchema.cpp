@@ -185,6 +185,11 @@ KindSchema shadowStudyBlock() {
                                 "Surroundings around the site's polygons that the study covers "
                                 "when `extent` is absent: ground and screens out there can shade "
                                 "the site (clipped to the elevation raster)."));
+    attributes.push_back(length("shadow_reach", 5000.0, 0.0,
+                                "How far outside the study's grid ground, buildings and trees "
+                                "still cast shadows into it (clipped to the elevation raster): "
+                                "a ridge 2 km away shades a valley once the sun is lower than "
+                                "its height over 2 km. 0: only the grid itself casts."));
     attributes.push_back(plainNumber("sun_hours_target", 0.0, 24.0, 2.0,
                                      "Hours of direct sun a site cell needs to count in the "
                                      "summary's share (2 in BRE 209)."));

@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <vector>
 
 #include "sylva/core/geo/SolarPosition.h"
@@ -215,6 +216,72 @@ TEST(ShadowStudy, SiteSummaryMatchesTheSolarGeometry) {
     ASSERT_TRUE(plain.ok());
     EXPECT_TRUE(std::isnan(plain->siteMeanSunHours));
     EXPECT_TRUE(std::isnan(plain->siteShareAtTarget));
+}
+
+// Ground outside the study's grid casts into it (the caster grid of `shadow_reach`): a 50 m
+// wall of ground on the west edge of a 5 m grid, the study's window starting 10 cells east
+// of it, the sun in the west at tan e = 0.3. The wall's top (col 9, 55 m) shades flat ground
+// (5 m) while the ray from a cell reaches 55 m only beyond it: cols < 9 + 50 / (0.3 × 5) =
+// 42.33. Cast from the window's own grid, the wall is not there and every cell is lit.
+TEST(ShadowStudy, GroundOutsideTheWindowCastsIntoIt) {
+    const int width = 200, height = 20;
+    ElevationGrid ground;
+    ground.geometry = {300000.0, 9120000.0, 5.0, 5.0, width, height};
+    ground.heights.assign(std::size_t(width) * height, float(kGroundHeight));
+    for (int r = 0; r < height; ++r)
+        for (int c = 0; c < 10; ++c)
+            ground.heights[std::size_t(r) * width + std::size_t(c)] = float(kGroundHeight + 50.0);
+    const CellWindow window{20, 2, width - 20, height - 4};
+    const ShadowCaster caster(ground, {}, window);
+    const double azimuth = 1.5 * kPi, elevation = std::atan(0.3);
+    const std::vector<std::uint8_t> lit = caster.sunlitCells(azimuth, elevation);
+    ASSERT_EQ(lit.size(), std::size_t(window.width) * std::size_t(window.height));
+    for (int row = 0; row < window.height; ++row)
+        for (int col = 0; col < window.width; ++col)
+            EXPECT_EQ(lit[std::size_t(row) * std::size_t(window.width) + std::size_t(col)],
+                      window.col + col >= 43 ? 1 : 0)
+                << "window cell " << col << ", " << row;
+    // The window alone as the whole grid: nothing casts.
+    ElevationGrid alone = ground;
+    alone.geometry.originX += window.col * alone.geometry.cellWidth;
+    alone.geometry.width = window.width;
+    alone.heights.clear();
+    for (int r = 0; r < height; ++r)
+        for (int c = window.col; c < width; ++c)
+            alone.heights.push_back(ground.heights[std::size_t(r) * width + std::size_t(c)]);
+    const ShadowCaster bare(alone, {});
+    for (std::uint8_t cell : bare.sunlitCells(azimuth, elevation))
+        EXPECT_EQ(cell, 1);
+}
+
+// A day on a window equals the same cells of the day on the whole grid (indices, no-data).
+TEST(ShadowStudy, WindowedDayEqualsTheWholeGridsCells) {
+    Scene scene = boxScene(40, 1.0, 15, 24);
+    scene.ground.heights[3 * 40 + 12] = std::numeric_limits<float>::quiet_NaN();
+    const ShadowCaster whole(scene.ground, scene.screens);
+    const CellWindow window{10, 2, 22, 30};
+    const ShadowCaster part(scene.ground, scene.screens, window);
+    ShadowStudy study = minuteStudy(scene);
+    study.stepMinutes = 30.0;
+    auto all = computeShadowDay(whole, study, "2024-06-21");
+    auto some = computeShadowDay(part, study, "2024-06-21");
+    ASSERT_TRUE(all.ok() && some.ok());
+    ASSERT_EQ(some->sunHours.size(), std::size_t(window.width) * std::size_t(window.height));
+    int compared = 0;
+    for (int row = 0; row < window.height; ++row)
+        for (int col = 0; col < window.width; ++col) {
+            const float a =
+                all->sunHours[std::size_t(row + window.row) * 40 + std::size_t(col + window.col)];
+            const float b =
+                some->sunHours[std::size_t(row) * std::size_t(window.width) + std::size_t(col)];
+            if (std::isnan(a)) {
+                EXPECT_TRUE(std::isnan(b)) << col << ", " << row;
+                continue;
+            }
+            EXPECT_EQ(a, b) << col << ", " << row;
+            ++compared;
+        }
+    EXPECT_EQ(compared, window.width * window.height - 1);
 }
 
 }  // namespace

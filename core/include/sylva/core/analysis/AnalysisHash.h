@@ -14,7 +14,7 @@
 namespace sylva {
 
 // Raised whenever core/analysis changes what a block writes.
-inline constexpr std::uint64_t kAnalysisVersion = 2;
+inline constexpr std::uint64_t kAnalysisVersion = 3;
 
 // Never fails: a file that cannot be stamped (missing) hashes as missing, so it changes
 // the hash when it appears.

@@ -15,6 +15,10 @@
 // elevation is ≤ 0 (shadow). Ground between crossings inside a cell can bulge above
 // the linear interpolation by at most a quarter of the cell's twist (as for R3).
 //
+// The window: the cells whose sun sunlitCells reports (the study's grid inside a larger
+// caster grid, so that ground and screens outside the study's extent still cast shadows
+// into it); the whole grid by default.
+//
 // Units: grid coordinates (integers are cell centres), metres, radians. No-data ground
 // does not block. Thread safety: const methods may be called from many threads.
 #pragma once
@@ -26,17 +30,28 @@
 
 namespace sylva {
 
+// A block of cells of a grid: columns [col, col + width), rows [row, row + height).
+struct CellWindow {
+    int col = 0, row = 0;
+    int width = 0, height = 0;
+};
+
 class ShadowCaster {
 public:
     // `screens`: metres above the ground per cell (row-major, the grid's size; 0 = none);
-    // empty: bare earth. A mismatched size is a programmer error.
-    ShadowCaster(const ElevationGrid& ground, std::vector<float> screens);
+    // empty: bare earth. `window`: the cells sunlitCells reports; width 0 = the whole
+    // grid. A mismatched size or a window outside the grid is a programmer error.
+    // `ground` is borrowed and must outlive the caster.
+    ShadowCaster(const ElevationGrid& ground, std::vector<float> screens, CellWindow window = {});
 
-    // True when the point at (col, row) on the surface sees the sun.
+    // True when the point at (col, row) of the whole grid on the surface sees the sun.
     bool sunlit(double col, double row, double azimuth, double elevation) const;
 
-    // 1 (lit) or 0 (shadow) per cell centre, rows in parallel (WorkerPool::shared()).
+    // 1 (lit) or 0 (shadow) per cell centre of the window (row-major, the window's size),
+    // rows in parallel (WorkerPool::shared()).
     std::vector<std::uint8_t> sunlitCells(double azimuth, double elevation) const;
+
+    const CellWindow& window() const { return window_; }
 
     // The surface height at (col, row): ground (bilinear) + the screen of its cell.
     double surfaceAt(double col, double row) const;
@@ -49,6 +64,7 @@ private:
 
     const ElevationGrid& ground_;
     std::vector<float> screens_;
+    CellWindow window_;
     double highest_ = 0.0;  // metres, the highest surface point
 };
 

@@ -9,6 +9,11 @@
 // (the frames). Hours of direct sun per cell integrate the lit samples by the
 // trapezoid rule over the window (a sample below the horizon counts as shadow).
 //
+// The caster grid: the grid grown by `shadow_reach` on every side (whole cells of the
+// grid's size, clipped to the DEM), read with its screens, so that a ridge, a building
+// or a wood outside the study's extent still shades it when the sun is low. Shadows are
+// computed for the grid's cells only.
+//
 // The site (optional): the polygons of a features source rasterized on the grid (a cell
 // whose centre lies inside is a site cell). Without `extent`/`extent_geo` the grid is the
 // polygons' box grown by `site_margin`, clipped to the DEM. Per date the study reports the
@@ -18,10 +23,10 @@
 //
 // planShadowStudy failures are user errors that start with the attribute's
 // file:line:col and the block: those of the ztv (elevation, extent, resolution,
-// screening), a date that is not a plain date, a window that is empty, a step that
-// does not divide into at most 1440 frames, a site that is not a features source, whose
-// data set cannot be read, holds no polygons, lies outside the DEM or covers no cell
-// centre of the grid.
+// screening), a caster grid of more than kMaxCasterCells (lower `shadow_reach`), a date that is not
+// a plain date, a window that is empty, a step that does not divide into at most 1440 frames, a
+// site that is not a features source, whose data set cannot be read, holds no polygons, lies
+// outside the DEM or covers no cell centre of the grid.
 #pragma once
 
 #include <cstdint>
@@ -43,6 +48,11 @@ struct ShadowStudy {
     GridGeometry grid;  // the DEM's CRS
     std::string crsWkt;
     std::vector<ScreenLayer> screens;
+    // The ground that casts shadows into the grid (the grid's CRS, aligned with its
+    // cells): the grid's cell (c, r) is the caster grid's (c + casterWindow.col,
+    // r + casterWindow.row). Width 0: the grid itself (studies built in code).
+    GridGeometry casterGrid;
+    CellWindow casterWindow;
     std::vector<std::string> dates;  // "2024-06-21"
     double stepMinutes = 60.0;
     double dayStartHours = 0.0, dayEndHours = 24.0;  // local clock time
@@ -55,6 +65,7 @@ struct ShadowStudy {
     double sunHoursTarget = 2.0;  // hours of direct sun a site cell needs (the share)
 
     static constexpr double kMaxCells = 4.0e6;
+    static constexpr double kMaxCasterCells = 6.4e7;  // the caster grid, without --force
 };
 
 // force: no limit on the number of cells (sylva analyse --force).
@@ -78,7 +89,8 @@ struct ShadowDay {
     double siteShareAtTarget = std::numeric_limits<double>::quiet_NaN();
 };
 
-// One date of the study. Fails when the date cannot be read.
+// One date of the study, on the caster's window (the study's grid when the caster grid is
+// larger). Fails when the date cannot be read.
 Result<ShadowDay> computeShadowDay(const ShadowCaster& caster, const ShadowStudy& study,
                                    const std::string& date);
 
