@@ -192,7 +192,7 @@ Status readCasterGrid(const BlockReader& reader, const RasterInfo& dem, bool for
                       "the study's grid grown by shadow_reach has %.0f cells, more than %.0f: "
                       "lower shadow_reach or coarsen the resolution (or --force)",
                       total, ShadowStudy::kMaxCasterCells);
-        return Error{reader.where("shadow_reach") + "shadow_study '" + study.name + "': " + text};
+        return Error{reader.where("shadow_reach") + text};
     }
     study.casterGrid = caster;
     study.casterWindow = {west, north, g.width, g.height};

@@ -263,6 +263,29 @@ expect_stderr "baddate.sylva:5:14: shadow_study 'sun': a date is a plain day"
 expect_nothing_written
 end
 
+# A flat 12 km DEM at 30 m: a 1 km study at 1 m is allowed (1 M cells), but grown by
+# shadow_reach = 5 km it would hold 121 M cells.
+gdal_create -q -of GTiff -outsize 400 400 -bands 1 -ot Float32 -burn 10 -a_srs EPSG:32725 \
+    -a_ullr 284000 9122000 296000 9110000 "$SCRATCH/flat.tif" || fail "gdal_create failed"
+cat >"$SCRATCH/bigreach.sylva" <<'SYLVA'
+source flat : raster { file = "flat.tif"; kind = elevation }
+shadow_study sun {
+    elevation = @flat
+    extent = [289500m, 9115500m, 290500m, 9116500m]
+    resolution = 1m
+    shadow_reach = 5km
+    dates = [2024-06-21]
+    output = "out/{name}"
+}
+SYLVA
+begin "a caster grid too large for shadow_reach -> located error, nothing written"
+rm -rf "$SCRATCH/out"
+(cd "$SCRATCH" && "$SYLVA" analyse bigreach.sylva >"$OUT" 2>"$ERR"); RC=$?
+expect_rc 1
+expect_stderr "bigreach.sylva:6:20: shadow_study 'sun': the study's grid grown by shadow_reach has"
+expect_nothing_written
+end
+
 # A site: a 100 m square east of the footprint; without an extent the study covers the
 # square grown by site_margin (290600..290900 x 9115500..9115800, 30 x 30 cells of 10 m),
 # the square holds 10 x 10 cell centres. From 09:00 to 15:00 on 21 June the building's
