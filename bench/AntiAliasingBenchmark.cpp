@@ -1,4 +1,5 @@
 #include "sylva/bench/AntiAliasingBenchmark.h"
+#include "sylva/bench/BenchmarkMetrics.h"
 
 #include <algorithm>
 #include <memory>
@@ -9,18 +10,6 @@
 #include "sylva/render/scene/SceneRenderer.h"
 
 namespace sylva::bench {
-
-namespace {
-
-double median(std::vector<double> values) {
-    if (values.empty()) {
-        return 0.0;
-    }
-    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-    return values[values.size() / 2];
-}
-
-}  // namespace
 
 Result<AntiAliasingBenchmarkResult> runAntiAliasingBenchmark(
     const render::ShaderLibrary& library, const AntiAliasingBenchmarkOptions& options) {

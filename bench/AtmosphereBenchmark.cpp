@@ -1,4 +1,5 @@
 #include "sylva/bench/AtmosphereBenchmark.h"
+#include "sylva/bench/BenchmarkMetrics.h"
 
 #include <glad/gl.h>
 
@@ -24,14 +25,6 @@ constexpr double kDegree = 3.14159265358979323846 / 180.0;
 constexpr double kCentreLatitude = 46.0 * kDegree;  // as the terrain bench
 constexpr double kCentreLongitude = 8.0 * kDegree;
 constexpr double kAltitudes[] = {800e3, 100e3, 10e3, 1e3, 50.0};
-
-double median(std::vector<double> values) {
-    if (values.empty()) {
-        return 0.0;
-    }
-    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-    return values[values.size() / 2];
-}
 
 // A smooth 4-degree relief (hills of 1.5 km): the G-buffer only decides which pixels
 // are ground and how far they are.

@@ -1,8 +1,18 @@
 #include "sylva/bench/BenchmarkMetrics.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace sylva::bench {
+
+double median(std::vector<double> values) {
+    if (values.empty()) {
+        return 0.0;
+    }
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
 
 std::string metricsJsonMembers(const MetricList& metrics, NumberFormat format) {
     std::string out;

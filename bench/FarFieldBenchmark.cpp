@@ -1,4 +1,5 @@
 #include "FarFieldBenchmark.h"
+#include "sylva/bench/BenchmarkMetrics.h"
 
 #include <algorithm>
 #include <cmath>
@@ -51,15 +52,6 @@ source forest : plants {
 scenario earth { layers = [@height, @colour, @normals, @forest] }
 render { sun = geo(5deg, -40deg); atmosphere = true; ocean = true }
 )sylva";
-
-double median(std::vector<double> values) {
-    if (values.empty()) {
-        return 0.0;
-    }
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 }  // namespace
 

@@ -1,4 +1,5 @@
 #include "sylva/bench/PlantsBenchmark.h"
+#include "sylva/bench/BenchmarkMetrics.h"
 
 #include <unistd.h>
 
@@ -20,11 +21,6 @@ using Clock = std::chrono::steady_clock;
 
 double millisecondsSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-double median(std::vector<double> times) {
-    std::sort(times.begin(), times.end());
-    return times[times.size() / 2];
 }
 
 // The times of one run, milliseconds.

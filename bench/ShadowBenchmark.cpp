@@ -1,4 +1,5 @@
 #include "ShadowBenchmark.h"
+#include "sylva/bench/BenchmarkMetrics.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -18,14 +19,6 @@ namespace sylva::bench {
 using namespace sylva::render;
 
 namespace {
-
-double median(std::vector<double> values) {
-    if (values.empty()) {
-        return 0.0;
-    }
-    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-    return values[values.size() / 2];
-}
 
 // Frame times of one scene, milliseconds: with and without shadows (both without SSAO),
 // and with shadows and SSAO.

@@ -29,14 +29,6 @@ using render::Image;
 
 namespace {
 
-double median(std::vector<double> values) {
-    if (values.empty()) {
-        return 0.0;
-    }
-    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-    return values[values.size() / 2];
-}
-
 // What the clipmap flights measure (per frame of the first flight, unless noted).
 struct ClipmapFlight {
     double trianglesMax[2] = {0, 0};  // of each flight: the DEM and 16x its samples

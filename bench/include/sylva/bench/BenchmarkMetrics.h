@@ -22,6 +22,10 @@ struct NumberFormat {
     int digits = 6;
 };
 
+// The median of frame or run times (the mean of the two middle values for an even count);
+// 0 for none.
+double median(std::vector<double> values);
+
 // `"key":value` pairs joined by commas, in the order given.
 std::string metricsJsonMembers(const MetricList& metrics, NumberFormat format);
 // {"suite":"SUITE","metrics":{MEMBERS}}
