@@ -13,7 +13,7 @@
 //                       recomputed"; load-independent: the changed branch plus whatever
 //                       the tile budget had evicted that the new image needs);
 //   series_s_per_image  one process rendering the series (default views block
-//                       `photo_points`: 3 cameras × 2 scenarios × 2 times = 12 images,
+//                       `photo_points`: 3 cameras × 3 scenarios × 2 times = 18 images,
 //                       --no-comparisons) divided by its image count;
 //   shard_speedup       that series' wall time over the wall time of two `--shard i/2`
 //                       processes started together (target ≥ 1.6);
