@@ -27,6 +27,7 @@
 #include "Commands.h"
 #include "PhotoDeliverables.h"
 #include "ProjectSession.h"
+#include "TileStatisticsReport.h"
 #include "sylva/core/model/BlockReader.h"
 #include "sylva/render/batch/BatchRenderer.h"
 
@@ -288,31 +289,6 @@ bool parseRequest(const ParsedCommandLine& command, RenderRequest& request) {
     return true;
 }
 
-// --tile-stats: where the tile time went, per source (stderr), for profiling a cold render.
-void printTileStatistics(const Scheduler& scheduler) {
-    std::fprintf(stderr, "%-28s %9s %9s %9s %11s\n", "source", "produced", "from disk", "hits",
-                 "produce s");
-    for (const SchedulerStatistics& source : scheduler.statisticsPerSource()) {
-        std::fprintf(stderr, "%-28s %9zu %9zu %9zu %11.2f\n", source.name.c_str(), source.misses,
-                     source.diskHits, source.hits, source.produceSeconds);
-    }
-    const SchedulerStatistics total = scheduler.totals();
-    std::fprintf(stderr, "%-28s %9zu %9zu %9zu %11.2f\n", "total", total.misses, total.diskHits,
-                 total.hits, total.produceSeconds);
-    if (const std::shared_ptr<DiskTileCache>& disk = scheduler.diskCache()) {
-        const DiskTileCacheStatistics d = disk->statistics();
-        std::fprintf(stderr,
-                     "disk cache %s: %llu hits, %llu misses, %llu written (%.1f MiB), %llu "
-                     "failed writes, %llu corrupt; read %.2f s, write %.2f s\n",
-                     disk->folder().string().c_str(), static_cast<unsigned long long>(d.hits),
-                     static_cast<unsigned long long>(d.misses),
-                     static_cast<unsigned long long>(d.writes),
-                     static_cast<double>(d.bytesWritten) / (1 << 20),
-                     static_cast<unsigned long long>(d.writeFailures),
-                     static_cast<unsigned long long>(d.corrupt), d.readSeconds, d.writeSeconds);
-    }
-}
-
 // The exit status of a finished (or cancelled) run, after printing its end.
 int finish(const render::BatchSummary& summary, bool progressJson) {
     if (summary.cancelled) {
@@ -432,7 +408,7 @@ int runRender(const std::vector<std::string>& arguments) {
     std::signal(SIGINT, SIG_DFL);
     std::signal(SIGTERM, SIG_DFL);
     if (command.has("tile-stats")) {
-        printTileStatistics(batch.scheduler(plan->setup()));
+        TileStatisticsReport().print(batch.scheduler(plan->setup()), stderr);
     }
     if (!summary) {
         // Only a renderer that cannot be made (no GL context on this node) ends a run here.

@@ -1,5 +1,6 @@
 // `sylva bench turnaround [--json] [--size WxH] [--project FILE] [--views NAME]
-//                         [--gl egl|osmesa|glfw] [--disk-only]`: how fast a planner sees results on
+//                         [--gl egl|osmesa|glfw] [--disk-only | --edit-only]`: how fast a planner
+//                         sees results on
 //                         a
 // real project (bench/TurnaroundBenchmark.h: cold render, warm edit through `watch`,
 // series per image, shard speedup, the disk tile cache's keys), measured by running this very
@@ -27,14 +28,17 @@ int runTurnaroundBench(const std::vector<std::string>& arguments) {
                                                                    {"views"},
                                                                    {"gl"},
                                                                    {"disk-only", false},
+                                                                   {"edit-only", false},
                                                                    {"help", false}});
     if (command.has("help")) {
         std::puts(
             "usage: sylva bench turnaround [--json] [--size WxH] [--project FILE] [--views NAME] "
-            "[--gl egl|osmesa|glfw] [--disk-only]\n"
+            "[--gl egl|osmesa|glfw] [--disk-only | --edit-only]\n"
             "defaults: projects/olinda/olinda.sylva, views photo_points, 1280x720\n"
             "--disk-only: the reduced mode (cold render, series and the disk cache keys; no\n"
-            "warm edit, no shard speedup)");
+            "warm edit, no shard speedup)\n"
+            "--edit-only: cold render and warm edit only (cold_render_s, warm_edit_s,\n"
+            "edit_ratio, warm_edit_tiles)");
         return 0;
     }
     if (!command.error.empty() || !command.positional.empty()) {
@@ -52,6 +56,11 @@ int runTurnaroundBench(const std::vector<std::string>& arguments) {
     options.projectFile = command.get("project").value_or("projects/olinda/olinda.sylva");
     options.views = command.get("views").value_or("photo_points");
     options.diskOnly = command.has("disk-only");
+    options.editOnly = command.has("edit-only");
+    if (options.diskOnly && options.editOnly) {
+        reportError("bench turnaround: --disk-only and --edit-only exclude each other");
+        return 2;
+    }
     if (!std::filesystem::is_regular_file(options.projectFile)) {
         reportError("bench turnaround: project '" + options.projectFile.string() +
                     "' not found (run from the repository root or give --project FILE)");

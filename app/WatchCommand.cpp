@@ -1,11 +1,12 @@
 // `sylva watch PROJECT [--views NAME] [--camera NAME] [--out DIR] [--size WxH] [--gl ...]
-//                      [--interval-ms N] [--exit-after N] [-D name=value]`
+//                      [--interval-ms N] [--exit-after N] [--tile-stats] [-D name=value]`
 // Headless edit loop: renders the chosen views, then watches the project file, its
 // imports and every data file its sources read. On a change it parses the project once;
 // with errors it prints the diagnostics and keeps the last images; otherwise
 // render::BatchRenderer keeps the tiles of every source whose content hash is unchanged
 // (Scheduler::retainOnly), recomputes only the rest, rewrites the images and this command
-// prints the edit-to-image latency with the number of tiles recomputed.
+// prints the edit-to-image latency with the number of tiles recomputed (--tile-stats:
+// per source, what each render produced, evicted and kept; TileStatisticsReport).
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -17,6 +18,7 @@
 #include "CommandLine.h"
 #include "Commands.h"
 #include "ProjectSession.h"
+#include "TileStatisticsReport.h"
 #include "sylva/core/base/FileWatch.h"
 #include "sylva/render/batch/BatchRenderer.h"
 
@@ -34,6 +36,7 @@ struct WatchRequest {
     render::BatchSelection selection;  // one viewpoint at a time: images, first path frames
     int intervalMs = 200;
     int exitAfter = 1 << 30;
+    bool tileStatistics = false;  // --tile-stats
 };
 
 // Prints each image written ("PATH  WxH") and every error.
@@ -90,6 +93,7 @@ bool parseRequest(const ParsedCommandLine& command, WatchRequest& request) {
     }
     request.options.backend = backend.value();
     request.project = command.positional[0];
+    request.tileStatistics = command.has("tile-stats");
     render::BatchSelection& selection = request.selection;
     selection.outputFolder = command.get("out").value_or("out");
     selection.views = command.get("views").value_or("");
@@ -124,7 +128,7 @@ std::pair<std::vector<std::filesystem::path>, bool> load(const std::filesystem::
 
 // Renders the chosen images of the current project; false on errors (already printed).
 bool renderAll(render::BatchRenderer& batch, const WatchRequest& request,
-               std::chrono::steady_clock::time_point since) {
+               std::chrono::steady_clock::time_point since, TileStatisticsReport& statistics) {
     Result<render::BatchPlan> plan = batch.plan(request.selection);
     if (!plan) {
         reportError(plan.error().message);
@@ -144,6 +148,9 @@ bool renderAll(render::BatchRenderer& batch, const WatchRequest& request,
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+    if (request.tileStatistics) {
+        statistics.print(batch.scheduler(plan->setup()), stderr);
+    }
     std::printf("edit-to-image latency: %.2f s, %zu tiles recomputed, %zu cached\n", seconds,
                 summary->tilesProduced, summary->tilesCached);
     std::fflush(stdout);
@@ -161,13 +168,14 @@ int runWatch(const std::vector<std::string>& arguments) {
                                                                    {"interval-ms"},
                                                                    {"exit-after"},
                                                                    {"cache-mb"},
+                                                                   {"tile-stats", false},
                                                                    {"help", false}});
     if (command.has("help")) {
         std::puts(
             "usage: sylva watch PROJECT [--views NAME] [--camera NAME] [--out DIR] [--size WxH]\n"
             "                   [--gl egl|osmesa|glfw] [--interval-ms N] [--exit-after N] "
             "[--cache-mb N]\n"
-            "                   [-D name=value]");
+            "                   [--tile-stats] [-D name=value]");
         return 0;
     }
     WatchRequest request;
@@ -194,12 +202,13 @@ int runWatch(const std::vector<std::string>& arguments) {
             }
         }
     };
+    TileStatisticsReport statistics;
     int renders = 0;
     int status = 0;
     auto since = std::chrono::steady_clock::now();
     auto [files, ok] = load(request.project, command, batch);
     if (ok) {
-        status = renderAll(batch, request, since) ? 0 : 1;
+        status = renderAll(batch, request, since, statistics) ? 0 : 1;
         ++renders;
     }
     startWatching(files, ok);
@@ -224,7 +233,7 @@ int runWatch(const std::vector<std::string>& arguments) {
             status = 1;
             continue;
         }
-        status = renderAll(batch, request, since) ? 0 : 1;
+        status = renderAll(batch, request, since, statistics) ? 0 : 1;
         ++renders;
         startWatching(files, true);
     }

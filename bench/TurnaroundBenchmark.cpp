@@ -210,8 +210,9 @@ public:
     // The disk cache folders of the measurements, below the temporary folder.
     std::filesystem::path cacheFolder(const std::string& name) const { return folder_ / name; }
 
-    // 2. Warm: watch the view, edit the colour adjustment, wait for the new image.
-    Result<double> warm(const std::string& editedText) const {
+    // 2. Warm: watch the view, edit the colour adjustment, wait for the new image; the
+    // seconds and the tiles the watch recomputed for it.
+    Result<std::pair<double, double>> warm(const std::string& editedText) const {
         const std::filesystem::path log = folder_ / "watch.log";
         std::vector<std::string> arguments = {options_.executable.string(),
                                               "watch",
@@ -247,7 +248,18 @@ public:
         if (waitFor(watch) != 0) {
             return failed("watch", log);
         }
-        return seconds;
+        // The second "edit-to-image latency: S s, N tiles recomputed, M cached".
+        const std::string text = readText(log);
+        const std::regex latency(R"(edit-to-image latency: [0-9.]+ s, ([0-9]+) tiles recomputed)");
+        std::vector<double> tiles;
+        for (auto it = std::sregex_iterator(text.begin(), text.end(), latency);
+             it != std::sregex_iterator(); ++it) {
+            tiles.push_back(std::stod((*it)[1].str()));
+        }
+        if (tiles.size() < 2) {
+            return failed("the watch (no tile count after the edit)", log);
+        }
+        return std::make_pair(seconds, tiles[1]);
     }
 
     // 3. The series in one process: its wall time and image count (and CPU seconds).
@@ -382,12 +394,16 @@ Result<TurnaroundBenchmarkResult> runTurnaroundBenchmark(
     }
     result.metrics.push_back({"cold_render_s", cold.value()});
     if (!options.diskOnly) {
-        const Result<double> warm = run.warm(edited.value());
+        const Result<std::pair<double, double>> warm = run.warm(edited.value());
         if (!warm) {
             return warm.error();
         }
-        result.metrics.push_back({"warm_edit_s", warm.value()});
-        result.metrics.push_back({"edit_ratio", warm.value() / cold.value()});
+        result.metrics.push_back({"warm_edit_s", warm.value().first});
+        result.metrics.push_back({"edit_ratio", warm.value().first / cold.value()});
+        result.metrics.push_back({"warm_edit_tiles", warm.value().second});
+    }
+    if (options.editOnly) {
+        return result;
     }
     // The disk tile cache: a cold process writing it, then a second process reading it.
     const std::filesystem::path oneCache = run.cacheFolder("disk-cache-one");

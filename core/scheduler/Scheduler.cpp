@@ -123,7 +123,7 @@ Result<TilePointer> Scheduler::tile(const Source& source, const TileKey& key) {
         SourceCache& cache = cacheFor(source);
         if (auto hit = cache.tiles.find(key); hit != cache.tiles.end()) {
             ++cache.statistics.hits;
-            hit->second.lastUse = ++useClock_;
+            touchLocked(hit->second);
             return hit->second.tile;
         }
         if (auto failed = cache.failures.find(key); failed != cache.failures.end()) {
@@ -190,7 +190,7 @@ Result<TilePointer> Scheduler::run(std::unique_lock<std::mutex>& lock, const Tas
         ++(fromDisk ? cache->second.statistics.diskHits : cache->second.statistics.misses);
         cache->second.statistics.produceSeconds += own;
         if (produced) {
-            insertLocked(id, produced.value());
+            insertLocked(id, produced.value(), own);
         } else if (cache->second.failures.emplace(id.key, produced.error()).second) {
             ++cache->second.statistics.failures;
             report = true;
@@ -208,7 +208,12 @@ Result<TilePointer> Scheduler::run(std::unique_lock<std::mutex>& lock, const Tas
     return produced;
 }
 
-void Scheduler::insertLocked(const TaskId& id, TilePointer tile) {
+void Scheduler::touchLocked(CachedTile& cached) {
+    cached.lastUse = ++useClock_;
+    cached.priority = inflation_ + cached.costPerMiB;
+}
+
+void Scheduler::insertLocked(const TaskId& id, TilePointer tile, double seconds) {
     SourceCache& cache = caches_.at(id.hash);
     const std::size_t bytes = tile->bytes();
     auto [it, inserted] = cache.tiles.try_emplace(id.key);
@@ -217,7 +222,13 @@ void Scheduler::insertLocked(const TaskId& id, TilePointer tile) {
         cachedBytes_ -= it->second.tile->bytes();
         --cache.statistics.tiles;
     }
-    it->second = CachedTile{std::move(tile), ++useClock_};
+    // At least 0.1 ms a tile (a clock's resolution and the allocation), per MiB, rounded
+    // down to a power of two: timing noise between equal tiles does not order them.
+    constexpr double kMinimumSeconds = 1.0e-4;
+    const double perMiB = std::max(seconds, kMinimumSeconds) /
+                          (static_cast<double>(std::max<std::size_t>(bytes, 1)) / (1 << 20));
+    it->second = CachedTile{std::move(tile), 0, std::exp2(std::floor(std::log2(perMiB))), 0};
+    touchLocked(it->second);
     cache.statistics.bytes += bytes;
     ++cache.statistics.tiles;
     cachedBytes_ += bytes;
@@ -229,9 +240,11 @@ void Scheduler::insertLocked(const TaskId& id, TilePointer tile) {
 
 void Scheduler::pruneLocked() {
     // Seed 001 Fig. 4.3a: keep the tiles of the current quad and the ring adjacent to
-    // it; evict the farthest first, least recently used among equally far ones.
+    // it; evict the farthest first. Among equally far ones the seed takes the least
+    // recently used; here the cheapest to get again (GreedyDual-Size, see the header).
     struct Candidate {
         int distance;
+        double priority;
         std::uint64_t lastUse;
         std::uint64_t hash;
         TileKey key;
@@ -240,11 +253,16 @@ void Scheduler::pruneLocked() {
     for (const auto& [hash, cache] : caches_) {
         for (const auto& [key, cached] : cache.tiles) {
             const int distance = focus_ ? focusDistance(key, focus_->first, focus_->second) : 0;
-            candidates.push_back({distance, cached.lastUse, hash, key});
+            candidates.push_back({distance, cached.priority, cached.lastUse, hash, key});
         }
     }
+    // Farthest first; among equally far ones the lowest GreedyDual-Size priority, then
+    // the least recently used.
     std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
-        return a.distance != b.distance ? a.distance > b.distance : a.lastUse < b.lastUse;
+        if (a.distance != b.distance) {
+            return a.distance > b.distance;
+        }
+        return a.priority != b.priority ? a.priority < b.priority : a.lastUse < b.lastUse;
     });
     for (const Candidate& victim : candidates) {
         if (cachedBytes_ <= options_.budgetBytes) {
@@ -252,6 +270,11 @@ void Scheduler::pruneLocked() {
         }
         SourceCache& cache = caches_.at(victim.hash);
         auto it = cache.tiles.find(victim.key);
+        if (victim.distance <= 1) {
+            // Aging as GreedyDual-Size has it, but only by tiles evicted for their
+            // priority: one evicted for its distance (Fig. 4.3a) says nothing of costs.
+            inflation_ = std::max(inflation_, it->second.priority);
+        }
         const std::size_t bytes = it->second.tile->bytes();
         cache.tiles.erase(it);
         cache.statistics.bytes -= bytes;
@@ -267,7 +290,7 @@ TileLookup Scheduler::tryGet(const Source& source, const TileKey& key, int prior
     SourceCache& cache = cacheFor(source);
     if (auto hit = cache.tiles.find(key); hit != cache.tiles.end()) {
         ++cache.statistics.hits;
-        hit->second.lastUse = ++useClock_;
+        touchLocked(hit->second);
         return {TileLookup::State::Ready, hit->second.tile, {}};
     }
     if (auto failed = cache.failures.find(key); failed != cache.failures.end()) {
@@ -571,6 +594,7 @@ std::vector<SchedulerStatistics> Scheduler::statisticsPerSource() const {
     std::vector<SchedulerStatistics> result;
     for (const auto& [hash, cache] : caches_) {
         result.push_back(cache.statistics);
+        result.back().hash = hash;
     }
     std::sort(
         result.begin(), result.end(),

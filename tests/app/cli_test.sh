@@ -349,7 +349,7 @@ mkdir -p "$SCRATCH/watch"
 cp "$PROJECTS/watch.sylva" "$SCRATCH/watch/watch.sylva"
 WLOG=$SCRATCH/watch/log.txt
 ("$SYLVA" watch "$SCRATCH/watch/watch.sylva" --gl egl --out "$SCRATCH/watch/out" --exit-after 3 --interval-ms 100 \
-    >"$WLOG" 2>&1; echo "rc=$?" >>"$WLOG") &
+    --tile-stats >"$WLOG" 2>&1; echo "rc=$?" >>"$WLOG") &
 wait_for() { for _ in $(seq 1 1200); do grep -q "$1" "$WLOG" 2>/dev/null && return 0; sleep 0.1; done; return 1; }
 wait_for "watching" || fail "watch did not start"
 first=$(grep -m1 -o '[0-9]* tiles recomputed' "$WLOG" | cut -d' ' -f1)
@@ -367,6 +367,12 @@ expect_stdout "rc=0"
 expect_stdout "expected number, found word"
 [ -n "$first" ] && [ -n "$second" ] && [ "$second" -gt 0 ] && [ $((second * 3)) -lt "$first" ] ||
     fail "edit recomputed $second tiles of $first: expected only the adjust node's"
+# --tile-stats: per source, what each render produced; the edit's table (the second)
+# shows the adjust node recomputed and the noise terrain untouched.
+produced() { awk -v name="$1" -v n="$2" '$1 == name && ++seen == n { print $2 }' "$WLOG"; }
+[ "$(produced height 1)" -gt 0 ] && [ "$(produced height 2)" = 0 ] && [ "$(produced graded 2)" -gt 0 ] &&
+    [ "$(produced graded 2)" = "$second" ] ||
+    fail "--tile-stats: height $(produced height 1) then $(produced height 2), graded $(produced graded 2) of $second"
 end
 
 # --- check ----------------------------------------------------------------------

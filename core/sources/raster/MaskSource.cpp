@@ -7,6 +7,7 @@
 
 #include "sylva/core/base/Hash.h"
 #include "sylva/core/image/ColorSpace.h"
+#include "sylva/core/image/RankFilter.h"
 
 namespace sylva {
 namespace {
@@ -46,29 +47,6 @@ std::optional<int> resolveName(std::string_view name, const std::vector<const So
         }
     }
     return std::nullopt;
-}
-
-// Separable min (erode) or max (dilate) filter with a square element of radius r.
-void rank(std::vector<float>& grid, int width, int r, bool dilate) {
-    if (r <= 0) {
-        return;
-    }
-    std::vector<float> tmp(grid.size());
-    for (int pass = 0; pass < 2; ++pass) {
-        for (int y = 0; y < width; ++y) {
-            for (int x = 0; x < width; ++x) {
-                float v = dilate ? 0.0f : 1.0f;
-                for (int d = -r; d <= r; ++d) {
-                    const int xx = std::clamp(pass == 0 ? x + d : x, 0, width - 1);
-                    const int yy = std::clamp(pass == 0 ? y : y + d, 0, width - 1);
-                    const float s = grid[std::size_t(yy) * width + xx];
-                    v = dilate ? std::max(v, s) : std::min(v, s);
-                }
-                tmp[std::size_t(y) * width + x] = v;
-            }
-        }
-        grid.swap(tmp);
-    }
 }
 
 // Box blur of radius r by running sums (O(1) per texel and pass), edges clamped.
@@ -226,10 +204,10 @@ Result<TilePointer> MaskSource::produce(const TileKey& key, TileProvider& provid
             grid[std::size_t(gy + pad) * width + (gx + pad)] = m;
         }
     }
-    rank(grid, width, rOpen, false);
-    rank(grid, width, rOpen, true);
-    rank(grid, width, rClose, true);
-    rank(grid, width, rClose, false);
+    RankFilter::apply(grid, width, rOpen, false);
+    RankFilter::apply(grid, width, rOpen, true);
+    RankFilter::apply(grid, width, rClose, true);
+    RankFilter::apply(grid, width, rClose, false);
     boxBlur(grid, width, rFeather);
     boxBlur(grid, width, rFeather);
     auto tile = std::make_shared<ImageTile>(key, size, border, 1);

@@ -580,6 +580,52 @@ TEST(Scheduler, PruningKeepsTheRingAroundTheFocus) {
     lru.waitIdle();
 }
 
+TEST(Scheduler, AnEditOverBudgetRecomputesTheEditedBranchNotTheEvictedExpensiveTiles) {
+    // The turnaround bench's warm edit in small (issue 22: edit_ratio 0.155 -> 0.56):
+    // one frame's tiles exceed the budget; `saturation` of the adjust branch changes.
+    // hills (slow noise) -> height; raster -> adjust -> colour <- markers <- hills.
+    // Least-recently-used pruning evicted the first keys' noise tiles during the frame,
+    // so the edit computed them again; cost-aware pruning (GreedyDual-Size) evicts the
+    // cheap tiles and the edit recomputes the edited branch and cheap tiles only.
+    TestSource hills("hills", 1);
+    hills.delay = 100ms;  // vs microseconds: far apart even on a loaded machine
+    TestSource height("height", 2, {&hills});
+    TestSource raster("raster", 3);
+    TestSource markers("markers", 4, {&hills});
+    TestSource adjust("adjust", 5, {&raster});
+    TestSource colour("colour", 6, {&adjust, &markers});
+    constexpr int kKeys = 8;
+    // Room for the noise tiles and 12 of the 40 others.
+    Scheduler scheduler(options(1, (kKeys + 12) * kTileBytes));
+    const auto frame = [&](const Source& shown) {
+        for (int x = 0; x < kKeys; ++x) {
+            const TileKey key{4, 0, x, 3};
+            ASSERT_TRUE(scheduler.tile(height, key));
+            Result<TilePointer> tile = scheduler.tile(shown, key);
+            ASSERT_TRUE(tile);
+        }
+    };
+    frame(colour);
+    ASSERT_EQ(hills.calls.load(), kKeys);
+    ASSERT_GT(scheduler.totals().evictions, 0u);
+
+    TestSource adjusted("adjust", 50, {&raster});  // the edit: a new content hash
+    TestSource recoloured("colour", 6, {&adjusted, &markers});
+    ASSERT_NE(recoloured.contentHash(), colour.contentHash());
+    scheduler.retainOnly({hills.contentHash(), height.contentHash(), raster.contentHash(),
+                          markers.contentHash(), adjusted.contentHash(), recoloured.contentHash()});
+    frame(recoloured);
+    EXPECT_EQ(hills.calls.load(), kKeys);  // no noise tile computed again
+    EXPECT_EQ(adjusted.calls.load(), kKeys);
+    EXPECT_EQ(recoloured.calls.load(), kKeys);
+    EXPECT_LE(scheduler.totals().bytes, (kKeys + 12) * kTileBytes);
+    for (int x = 0; x < kKeys; ++x) {
+        const TileKey key{4, 0, x, 3};
+        EXPECT_EQ(scheduler.tile(recoloured, key).value()->at(0, 0, 0),
+                  float(6 + x) + float(50 + x) + float(3 + x) + float(4 + x) + float(1 + x));
+    }
+}
+
 TEST(Scheduler, InvalidationDropsTheNodeAndItsDependentsOnly) {
     TestSource terrain("terrain", 1);
     TestSource colour("colour", 2);

@@ -9,8 +9,11 @@
 //                       adjustment (`saturation` of an `adjust` source) is edited in the
 //                       copy; the time from the write to the watch's new image;
 //   edit_ratio          warm_edit_s / cold_render_s (target ≤ 0.3);
+//   warm_edit_tiles     the tiles the watch produced for the edit (its "N tiles
+//                       recomputed"; load-independent: the changed branch plus whatever
+//                       the tile budget had evicted that the new image needs);
 //   series_s_per_image  one process rendering the series (default views block
-//                       `photo_points`: 3 cameras × 2 scenarios × 2 times = 12 images,
+//                       `photo_points`: 3 cameras × 3 scenarios × 2 times = 18 images,
 //                       --no-comparisons) divided by its image count;
 //   shard_speedup       that series' wall time over the wall time of two `--shard i/2`
 //                       processes started together (target ≥ 1.6);
@@ -24,7 +27,8 @@
 // Every process starts with cold memory; all but the disk cache measurements run with
 // --no-disk-cache (so the user's default disk cache never warms them), those use empty
 // folders of their own. Seconds of wall time. With `diskOnly` (`--disk-only`, the
-// reduced mode) warm_edit_s, edit_ratio and shard_speedup are not measured.
+// reduced mode) warm_edit_s, edit_ratio, warm_edit_tiles and shard_speedup are not
+// measured; with `editOnly` (`--edit-only`) only cold_render_s and the three edit keys.
 #pragma once
 
 #include <cstddef>
@@ -46,6 +50,7 @@ struct TurnaroundBenchmarkOptions {
     int width = 1280, height = 720;      // --size of every process
     std::string gl = "egl";              // --gl of every process, passed as given
     bool diskOnly = false;               // the reduced mode (see above)
+    bool editOnly = false;               // cold render and warm edit only (see above)
 };
 
 struct TurnaroundBenchmarkResult {

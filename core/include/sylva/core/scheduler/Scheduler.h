@@ -3,7 +3,15 @@
 // a priority queue, drops the ones no longer wanted and hands the most urgent one to
 // each idle worker; workers produce tiles through the source graph and put them into
 // one cache per source content hash. All caches share one memory budget and are
-// pruned by distance to the focus (Fig. 4.3a).
+// pruned by distance to the focus (Fig. 4.3a); among tiles equally far, the one
+// cheapest to get again per byte goes first, aged by GreedyDual-Size (Cao & Irani,
+// "Cost-Aware WWW Proxy Caching Algorithms", USITS 1997): each tile's priority is the
+// inflation value L at its last use plus its cost per byte (the seconds its source took
+// to produce it, its inputs excluded, rounded down to a power of two so that costs
+// within a factor of two tie and recency decides); the evicted tile's priority becomes
+// L. So when one image's tiles exceed the budget, cheap tiles (a raster window read,
+// a constant) are evicted before expensive ones (fractal noise, a filtered mask) that
+// an edit or the next image would otherwise compute again; with equal costs it is LRU.
 //
 // Threads and OS priority: the manager runs one nice step below the creating thread,
 // workers `workerNiceIncrement` steps below it (Linux: setpriority(PRIO_PROCESS, tid)
@@ -66,6 +74,7 @@ struct SchedulerOptions {
 // Per source content hash, or the total over all sources.
 struct SchedulerStatistics {
     std::string name;           // the first source seen with this hash (empty for totals)
+    std::uint64_t hash = 0;     // the sources' content hash (0 for totals)
     std::size_t hits = 0;       // requests answered from the cache
     std::size_t misses = 0;     // tiles produced
     std::size_t diskHits = 0;   // tiles read from the disk cache instead of produced
@@ -168,6 +177,8 @@ private:
     struct CachedTile {
         TilePointer tile;
         std::uint64_t lastUse = 0;
+        double costPerMiB = 0;  // GreedyDual-Size: produce seconds per MiB, rounded
+        double priority = 0;    // inflation at the last use + costPerMiB
     };
     // One cache per source content hash (seed 001 §4.4.3).
     struct SourceCache {
@@ -191,7 +202,9 @@ private:
     SourceCache& cacheFor(const Source& source);  // registers the source's hash and inputs
     void queueLocked(const Source& source, const TileKey& key, int priority, bool wanted);
     void removeQueuedLocked(const TaskId& id);
-    void insertLocked(const TaskId& id, TilePointer tile);
+    // `seconds`: what producing (or reading) the tile cost, its inputs excluded.
+    void insertLocked(const TaskId& id, TilePointer tile, double seconds);
+    void touchLocked(CachedTile& cached);  // a use: recency and GreedyDual-Size priority
     void pruneLocked();
     void dropHashLocked(std::uint64_t hash);
     void postLocked(Message message);
@@ -212,6 +225,7 @@ private:
     std::uint64_t postedRounds_ = 0;  // setWanted/cancelAll lists posted (≥ wantedRound_)
     std::uint64_t finished_ = 0;      // tasks finished (finishedTasks())
     std::uint64_t useClock_ = 0;
+    double inflation_ = 0;  // GreedyDual-Size L: the priority of the last tile evicted
     std::size_t cachedBytes_ = 0;
     std::size_t peakBytes_ = 0;
     std::optional<std::pair<double, double>> focus_;  // latitude, longitude
