@@ -19,10 +19,6 @@ namespace sylva::render {
 
 namespace {
 
-// The plants' level-of-detail error in the shadow maps, in cascade texels: the width of
-// the shadow lookup's PCF box (shaders/shading/shadows.glsl), over which an edge fades.
-constexpr double kShadowErrorTexels = 3.0;
-
 // std430 mirrors of the shader structs (shaders/vegetation/ellipsoid.vert, line.vert).
 struct GpuEllipsoid {
     glm::vec4 centerNoise;
@@ -671,13 +667,15 @@ void VegetationRenderer::drawShadow(const ShadowView& view) {
     // texel: finer crown detail is filtered away, and one-texel selection drew the finest
     // levels and meshes of hundreds of trees into every cascade (docs/benchmarks.md,
     // shadow_frame_ratio). Plants still cast down to settings.minimumPixels texels.
+    // (settings.shadowErrorTexels, 3 by default.)
     Camera light = *view.camera;
     light.axes = glm::transpose(view.lightRotation);
     LodSelectionSettings selection;
-    selection.pixelAngle = kShadowErrorTexels * cascade.texelSize;
+    SYLVA_CHECK(settings.shadowErrorTexels > 0.0);
+    selection.pixelAngle = settings.shadowErrorTexels * cascade.texelSize;
     selection.fixedDistance = 1.0;
     selection.quality = settings.quality;
-    selection.minimumPixels = settings.minimumPixels / kShadowErrorTexels;
+    selection.minimumPixels = settings.minimumPixels / settings.shadowErrorTexels;
     selection.transitionBand = settings.transitionBand;
     selection.closeUpMesh = settings.closeUpMesh;
     // Impostors cast the LoD's shadows (an impostor faces the camera, not the sun).

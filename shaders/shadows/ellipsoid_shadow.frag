@@ -1,7 +1,8 @@
 #version 450 core
 // Ray-cast ellipsoid depth for the sun's shadow map (orthographic: the ray through a
 // texel runs along the light's -z from the ellipsoid's top). The LoD's noise alpha test
-// (§3.4.1, the species' own threshold and cells) perforates the crown as in the image, so
+// (§3.4.1, the species' own threshold and cells; front hit, then the back hit where the
+// front is perforated) perforates the crown as in the image, so
 // the filtered shadow lookup sees the crown's transmittance; the screen-door fades of the
 // LoD transitions apply as in the G-buffer pass.
 #include "../vegetation/vegetation.glsl"
@@ -41,7 +42,15 @@ void main() {
         cells = min(cells, exp2(floor(log2(max(1.0 / footprint, 1.0)))));
     }
     if (vFadeNoise.w > 0.0 && ellipsoidNoise(clamp(q, -1.0, 1.0), cells, vSeedDither.x) < vFadeNoise.w) {
-        discard;
+        // Perforated front: test the back hit too, as the image pass and the LoD's
+        // calibration (PrimitiveRasterizer) do; one test let 1 − t of the light through
+        // where the level was calibrated to 1 − t², i.e. coarse levels were ~40 % more
+        // transparent than the fine ones (docs/benchmarks.md, shading).
+        t = (-b + sqrt(max(h, 0.0))) / a;
+        q = origin + t * direction;
+        if (ellipsoidNoise(clamp(q, -1.0, 1.0), cells, vSeedDither.x) < vFadeNoise.w) {
+            discard;
+        }
     }
     gl_FragDepth = uProjection[2][2] * (vLocalCenterTop.w - t) + uProjection[3][2];
 }

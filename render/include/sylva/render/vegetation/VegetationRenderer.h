@@ -48,6 +48,10 @@ struct VegetationSettings {
     double transitionBand = 0.35;  // screen-door fade width, in ln(error)
     bool closeUpMesh = true;       // hand over from the finest LoD to the source mesh
     float normalNoise = 0.6f;      // normal perturbation of ellipsoids (§3.4.1)
+    // The plants' level-of-detail error in the shadow maps, in cascade texels (> 0): the
+    // width of the shadow lookup's PCF box (shaders/shading/shadows.glsl), over which an
+    // edge fades anyway. Plants cast down to minimumPixels / shadowErrorTexels texels.
+    double shadowErrorTexels = 3.0;
     // Occlusion culling (issue 21, OcclusionCuller): the plants are drawn in rings of
     // distance, nearest first — up to occluderDistance, then each ring occlusionRingRatio
     // times as far, the last one unbounded — and before each ring the depth buffer (terrain,
