@@ -14,6 +14,7 @@
 #include "OcclusionCuller.h"
 #include "PointCloudRenderer.h"
 #include "sylva/core/base/Check.h"
+#include "sylva/core/plantlod/ShadowThresholds.h"
 
 namespace sylva::render {
 
@@ -294,6 +295,7 @@ Result<std::uint32_t> VegetationRenderer::addSpecies(std::shared_ptr<const Plant
     glNamedBufferStorage(lineBuffer_.get(), GLsizeiptr(lines.size() * sizeof(GpuLine)),
                          lines.data(), 0);
 
+    appendShadowThresholds(*asset);
     species->mesh = uploadModel(asset->model, instanceBuffer_.get());
     species->leafLuminance = meanLeafLuminance(lod);
     SpeciesLod description = LodSelector::describe(*asset, transitionBand);
@@ -654,6 +656,23 @@ void VegetationRenderer::drawMeshes(const std::vector<std::unique_ptr<Vegetation
     }
 }
 
+void VegetationRenderer::appendShadowThresholds(const PlantAsset& asset) {
+    const PlantLod& lod = asset.lod;
+    const std::vector<ShadowThreshold> levels = shadowThresholds(asset.model, lod);
+    for (const LodEllipsoid& e : lod.ellipsoids) {
+        shadowThresholds_.push_back(e.level < levels.size()
+                                        ? glm::vec2(levels[e.level].low, levels[e.level].high)
+                                        : glm::vec2(e.alphaThreshold));
+    }
+    std::vector<glm::vec2> upload = shadowThresholds_;
+    if (upload.empty()) {
+        upload.resize(1);  // an empty buffer is not bindable as storage
+    }
+    shadowThresholdBuffer_ = createGlBuffer();
+    glNamedBufferStorage(shadowThresholdBuffer_.get(),
+                         GLsizeiptr(upload.size() * sizeof(glm::vec2)), upload.data(), 0);
+}
+
 void VegetationRenderer::drawShadow(const ShadowView& view) {
     if (view.cascade->terrainOnly || species_.empty() || shadowBatches_.empty()) {
         return;
@@ -731,6 +750,9 @@ void VegetationRenderer::drawShadowRuns(const ShadowView& view,
         program.setFloat("uMaximumPointSize", maximumPointSize_);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, pass == 0 ? 0 : 1,
                          pass == 0 ? ellipsoidBuffer_.get() : lineBuffer_.get());
+        if (pass == 0) {
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, shadowThresholdBuffer_.get());
+        }
         for (const DrawRun& run : shadowSelection_.runs) {
             const std::uint32_t count = pass == 0 ? run.ellipsoids : run.lines;
             if (run.kind != DrawRun::Kind::Primitives || count == 0) {

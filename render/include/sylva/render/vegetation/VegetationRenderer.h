@@ -140,6 +140,10 @@ private:
     bool mayExceedPointSize(const DrawRun& run, double pixelAngle, double cornerTangent,
                             double near) const;
     void drawShadowRuns(const ShadowView& view, const VegetationSettings& settings);
+    // Appends the species' per-ellipsoid shadow thresholds (core/plantlod/ShadowThresholds:
+    // each level's thresholds for the leaves' coverage seen from 10° and 55°) and
+    // re-uploads them.
+    void appendShadowThresholds(const PlantAsset& asset);
     // drawRing's Mesh and Billboard runs (the source mesh and billboard-cloud levels).
     void drawMeshRuns(const glm::dmat4& projection, double near, int pixelsWide, int pixelsHigh,
                       const VegetationSettings& settings, bool handover);
@@ -173,6 +177,10 @@ private:
     std::vector<std::unique_ptr<Species>> species_;
     std::vector<SpeciesLod> lods_;
     GlBuffer ellipsoidBuffer_, lineBuffer_;  // all species, concatenated
+    // The ellipsoids' noise thresholds in the shadow pass (ShadowThreshold low, high),
+    // parallel to ellipsoidBuffer_.
+    std::vector<glm::vec2> shadowThresholds_;
+    GlBuffer shadowThresholdBuffer_;
     std::uint32_t ellipsoidCount_ = 0, lineCount_ = 0;
     GlBuffer instanceBuffer_;
     std::size_t instanceCapacity_ = 0;
