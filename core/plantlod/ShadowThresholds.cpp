@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "sylva/core/base/Check.h"
+#include "sylva/core/base/WorkerPool.h"
 #include "sylva/core/plantlod/PrimitiveRasterizer.h"
 
 namespace sylva {
@@ -122,13 +123,16 @@ std::vector<ShadowThreshold> shadowThresholds(const PlantModel& model, const Pla
     if (!(targetLow > 0.0 && targetHigh > 0.0)) {
         return thresholds;  // no leaves to compare with
     }
-    for (std::size_t k = 0; k < lod.levels.size(); ++k) {
+    // Levels and elevations are independent items (each writes its own entry).
+    WorkerPool::shared().run(int(2 * lod.levels.size()), [&](int item) {
+        const std::size_t k = std::size_t(item / 2);
+        const bool high = item % 2 == 1;
         const std::vector<LodEllipsoid> ellipsoids = levelEllipsoids(lod, k);
         if (!ellipsoids.empty()) {
-            thresholds[k].low = matchingThreshold(rasterizer, ellipsoids, targetLow, false);
-            thresholds[k].high = matchingThreshold(rasterizer, ellipsoids, targetHigh, true);
+            (high ? thresholds[k].high : thresholds[k].low) =
+                matchingThreshold(rasterizer, ellipsoids, high ? targetHigh : targetLow, high);
         }
-    }
+    });
     return thresholds;
 }
 

@@ -14,6 +14,7 @@
 #include "OcclusionCuller.h"
 #include "PointCloudRenderer.h"
 #include "sylva/core/base/Check.h"
+#include "sylva/core/base/Hash.h"
 #include "sylva/core/plantlod/ShadowThresholds.h"
 
 namespace sylva::render {
@@ -671,6 +672,32 @@ void VegetationRenderer::appendShadowThresholds(const PlantAsset& asset) {
     shadowThresholdBuffer_ = createGlBuffer();
     glNamedBufferStorage(shadowThresholdBuffer_.get(),
                          GLsizeiptr(upload.size() * sizeof(glm::vec2)), upload.data(), 0);
+}
+
+std::optional<std::uint64_t> VegetationRenderer::shadowCacheKey(const ShadowView& view) const {
+    ContentHash hash;
+    if (view.cascade->terrainOnly || species_.empty() || shadowBatches_.empty()) {
+        return hash.value();  // drawShadow draws nothing
+    }
+    const VegetationSettings& settings = shadowSettings_;
+    const glm::dvec3 camera = view.lightRotation * view.camera->position;
+    const double texel = view.cascade->texelSize;
+    hash.add(std::floor(camera.x / texel)).add(std::floor(camera.y / texel));
+    hash.add(std::floor(camera.z / texel));
+    hash.add(int(settings.method)).add(settings.quality).add(settings.minimumPixels);
+    hash.add(settings.transitionBand).add(settings.closeUpMesh).add(settings.shadowErrorTexels);
+    hash.add(species_.size()).add(ellipsoidCount_).add(lineCount_);
+    for (std::size_t i = 0; i < species_.size(); ++i) {
+        const LeafState state = i < leafStates_.size() ? leafStates_[i] : LeafState{};
+        hash.add(state.leafFraction);
+    }
+    for (const InstanceBatch* batch : shadowBatches_) {
+        hash.add(reinterpret_cast<std::uintptr_t>(batch));
+        hash.add(batch->origin.x).add(batch->origin.y).add(batch->origin.z);
+        hash.add(batch->instances.size());
+        hash.add(reinterpret_cast<std::uintptr_t>(batch->instances.data()));
+    }
+    return hash.value();
 }
 
 void VegetationRenderer::drawShadow(const ShadowView& view) {

@@ -229,6 +229,35 @@ TEST_F(VegetationGolden, ForestShadeDoesNotDependOnTheShadowLevel) {
     }
 }
 
+// The plants' shadow depth is kept with the terrain's (ShadowMaps' cache, the
+// VegetationRenderer's shadowCacheKey) while nothing it depends on changes: a repeated
+// view copies every cascade and gives the same image; other batches (a thinned forest)
+// draw the split cascades again, and the image follows.
+TEST_F(VegetationGolden, PlantShadowsAreCachedWhileNothingChanges) {
+    const InstanceBatch batch = forest();
+    InstanceBatch thinned = batch;
+    thinned.instances.resize(batch.instances.size() / 2);
+    thinned.spheres.resize(batch.spheres.size() / 2);
+    const Camera c = camera(110.0, 120.0, -45.0 * kDegree, 50.0 * kDegree);
+    const VegetationSettings vegetation;
+    const Image first = render(c, 160, 90, {&batch}, vegetation, true);
+    const int cascades = int(renderer_->shadowMaps().cascades().size());
+    ASSERT_EQ(cascades, 5);
+    const Image repeated = render(c, 160, 90, {&batch}, vegetation, true);
+    EXPECT_EQ(renderer_->shadowMaps().cachedCascades(), cascades);
+    EXPECT_EQ(first.pixels, repeated.pixels);
+
+    const Image thin = render(c, 160, 90, {&thinned}, vegetation, true);
+    EXPECT_LE(renderer_->shadowMaps().cachedCascades(), 1);  // at most the terrain-only one
+    EXPECT_NE(thin.pixels, first.pixels);
+    const Image thinAgain = render(c, 160, 90, {&thinned}, vegetation, true);
+    EXPECT_EQ(renderer_->shadowMaps().cachedCascades(), cascades);
+    EXPECT_EQ(thinAgain.pixels, thin.pixels);
+    const Image back = render(c, 160, 90, {&batch}, vegetation, true);
+    EXPECT_LE(renderer_->shadowMaps().cachedCascades(), 1);
+    EXPECT_EQ(back.pixels, first.pixels);  // drawn again: the same as the first time
+}
+
 // A dolly from 300 m to 8 m: every LoD step and the mesh handover happen on the way.
 // Popping is a change of the LoD image from one frame to the next that the source mesh
 // does not make along the same path: per pixel (LoD(i+1) − LoD(i)) − (mesh(i+1) − mesh(i)).

@@ -25,8 +25,9 @@
 //
 // Frames: model space of the PlantModel/PlantLod (metres). Thresholds in [0, 1).
 // Failure: none; a model without leaf meshes (nothing to compare with) keeps the levels'
-// own thresholds. Cost: about 2 × 14 renders of each level at resolution² (CPU; for the
-// 600-leaf test oak at 128², a fraction of a second).
+// own thresholds. Cost: about 2 × 14 renders of each level at resolution² (CPU, levels
+// and elevations on the shared WorkerPool; docs/benchmarks.md gives the time).
+// Thread safety: a pure function of its arguments.
 #pragma once
 
 #include <vector>

@@ -118,11 +118,18 @@ public:
               const VegetationSettings& settings);
 
     // Shadow caster (seed 001 §7.1): the batches and settings of the last draw() (which
-    // must still be alive) selected again for the cascade's orthographic box with one
-    // texel as the tolerated error; ellipsoids and lines ray-cast along the light
-    // (shaders/shadows), with the LoD's noise alpha test as the crown's transmittance;
-    // meshes and billboard clouds alpha-tested. Skips the terrain-only cascade.
+    // must still be alive) selected again for the cascade's orthographic box with
+    // settings.shadowErrorTexels texels as the tolerated error; ellipsoids and lines
+    // ray-cast along the light (shaders/shadows), with the LoD's noise alpha test (the
+    // levels' ShadowThresholds) as the crown's transmittance; meshes and billboard clouds
+    // alpha-tested. Skips the terrain-only cascade.
     void drawShadow(const ShadowView& view) override;
+    // What drawShadow's depth depends on besides the cascade's box and the sun (which
+    // ShadowMaps adds): the camera in whole cascade texels (the instances are drawn
+    // camera-relative), the settings that select and draw, the species and their leaf
+    // states, and each batch of the last draw() by identity — address, origin, instance
+    // count and storage (batches are immutable once made; the stream makes new ones).
+    std::optional<std::uint64_t> shadowCacheKey(const ShadowView& view) const override;
 
     const VegetationStatistics& statistics() const { return statistics_; }
     // The selection of the last draw() (with occlusion culling: of its farthest ring).
