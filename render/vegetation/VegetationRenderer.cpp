@@ -741,6 +741,7 @@ void VegetationRenderer::drawShadow(const ShadowView& view) {
     selection.sidePlanes[3] = glm::vec3(0, -1, 0);
     selection.sideOffsets[3] = float(halfWidth + center.y);
     shadowSelector_.select(shadowBatches_, lods_, light, selection, shadowSelection_);
+    ++statistics_.shadowCascades;
     if (shadowSelection_.instances.empty()) {
         return;
     }

@@ -243,15 +243,19 @@ TEST_F(VegetationGolden, PlantShadowsAreCachedWhileNothingChanges) {
     const Image first = render(c, 160, 90, {&batch}, vegetation, true);
     const int cascades = int(renderer_->shadowMaps().cascades().size());
     ASSERT_EQ(cascades, 5);
+    EXPECT_EQ(renderer_->vegetation().statistics().shadowCascades, 4u);  // the split ones
     const Image repeated = render(c, 160, 90, {&batch}, vegetation, true);
     EXPECT_EQ(renderer_->shadowMaps().cachedCascades(), cascades);
+    EXPECT_EQ(renderer_->vegetation().statistics().shadowCascades, 0u);
     EXPECT_EQ(first.pixels, repeated.pixels);
 
     const Image thin = render(c, 160, 90, {&thinned}, vegetation, true);
     EXPECT_LE(renderer_->shadowMaps().cachedCascades(), 1);  // at most the terrain-only one
+    EXPECT_EQ(renderer_->vegetation().statistics().shadowCascades, 4u);
     EXPECT_NE(thin.pixels, first.pixels);
     const Image thinAgain = render(c, 160, 90, {&thinned}, vegetation, true);
     EXPECT_EQ(renderer_->shadowMaps().cachedCascades(), cascades);
+    EXPECT_EQ(renderer_->vegetation().statistics().shadowCascades, 0u);
     EXPECT_EQ(thinAgain.pixels, thin.pixels);
     const Image back = render(c, 160, 90, {&batch}, vegetation, true);
     EXPECT_LE(renderer_->shadowMaps().cachedCascades(), 1);

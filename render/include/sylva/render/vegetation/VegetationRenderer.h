@@ -85,6 +85,9 @@ struct VegetationStatistics {
     // drawn before it to finish).
     std::size_t occludedInstances = 0;
     double occlusionSeconds = 0;
+    // Shadow cascades drawShadow drew plants into since the last draw() (a cascade whose
+    // depth ShadowMaps copied from its cache is not drawn).
+    std::size_t shadowCascades = 0;
 };
 
 class VegetationRenderer : public ShadowCaster {
