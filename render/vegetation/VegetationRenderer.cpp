@@ -692,10 +692,7 @@ std::optional<std::uint64_t> VegetationRenderer::shadowCacheKey(const ShadowView
         hash.add(state.leafFraction);
     }
     for (const InstanceBatch* batch : shadowBatches_) {
-        hash.add(reinterpret_cast<std::uintptr_t>(batch));
-        hash.add(batch->origin.x).add(batch->origin.y).add(batch->origin.z);
-        hash.add(batch->instances.size());
-        hash.add(reinterpret_cast<std::uintptr_t>(batch->instances.data()));
+        hash.add(batch->contentHash);
     }
     return hash.value();
 }

@@ -130,8 +130,8 @@ public:
     // What drawShadow's depth depends on besides the cascade's box and the sun (which
     // ShadowMaps adds): the camera in whole cascade texels (the instances are drawn
     // camera-relative), the settings that select and draw, the species and their leaf
-    // states, and each batch of the last draw() by identity — address, origin, instance
-    // count and storage (batches are immutable once made; the stream makes new ones).
+    // states, and each batch of the last draw() by its InstanceBatch::contentHash (set by
+    // LodSelector::makeBatch; batches are not changed after it).
     std::optional<std::uint64_t> shadowCacheKey(const ShadowView& view) const override;
 
     const VegetationStatistics& statistics() const { return statistics_; }
