@@ -2,12 +2,14 @@
 #include "sylva/bench/BenchmarkMetrics.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <vector>
 
 #include "BenchForest.h"
 #include "TerrainFlight.h"
 #include "sylva/core/geo/Ellipsoid.h"
+#include "sylva/core/plantlod/ShadowThresholds.h"
 #include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/core/sources/raster/ConstantSource.h"
 #include "sylva/core/sources/raster/HypsometricSource.h"
@@ -24,6 +26,7 @@ namespace {
 // and with shadows and SSAO.
 struct ShadowSamples {
     std::vector<double> with, without, shadowPass, withOcclusion, occlusionPass;
+    double thresholdsMs = 0.0;  // ShadowThresholds of the oak (addSpecies computes them)
 };
 
 // One camera: a warm-up render (tiles, plants), then with and without shadows, then with
@@ -89,6 +92,11 @@ Status measureForest(const ShaderLibrary& library, const ShadingBenchmarkOptions
     if (!asset) {
         return asset.error();
     }
+    const auto thresholdsStart = std::chrono::steady_clock::now();
+    (void)shadowThresholds(asset.value()->model, asset.value()->lod);
+    samples.thresholdsMs = std::chrono::duration<double, std::milli>(
+                               std::chrono::steady_clock::now() - thresholdsStart)
+                               .count();
     Result<std::unique_ptr<SceneRenderer>> renderer =
         SceneRenderer::create(library, TerrainSettings{});
     if (!renderer) {
@@ -146,6 +154,7 @@ Status measureShadows(const ShaderLibrary& library, const ShadingBenchmarkOption
     metrics["shadow_ms_median_forest"] = median(forest.shadowPass);
     metrics["shadow_frames_terrain"] = double(flight.with.size());
     metrics["shadow_frames_forest"] = double(forest.with.size());
+    metrics["shadow_thresholds_ms"] = forest.thresholdsMs;
     const double terrainOcclusion =
         median(flight.withOcclusion) / std::max(median(flight.with), 1e-9);
     const double forestOcclusion =

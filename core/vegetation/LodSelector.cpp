@@ -7,6 +7,7 @@
 
 #include "DrawnExtent.h"
 #include "sylva/core/base/Check.h"
+#include "sylva/core/base/Hash.h"
 
 namespace sylva {
 
@@ -154,6 +155,11 @@ InstanceBatch LodSelector::makeBatch(const glm::dvec3& origin,
             batch.largestInstanceRadius = std::max(batch.largestInstanceRadius, instance.radius);
         }
     }
+    ContentHash hash;
+    hash.add(origin.x).add(origin.y).add(origin.z).add(batch.instances.size());
+    static_assert(sizeof(InstanceBatch::Instance) == 21 * 4);  // no padding bytes
+    hash.add(batch.instances.data(), batch.instances.size() * sizeof(InstanceBatch::Instance));
+    batch.contentHash = hash.value();
     return batch;
 }
 

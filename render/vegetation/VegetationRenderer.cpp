@@ -14,14 +14,12 @@
 #include "OcclusionCuller.h"
 #include "PointCloudRenderer.h"
 #include "sylva/core/base/Check.h"
+#include "sylva/core/base/Hash.h"
+#include "sylva/core/plantlod/ShadowThresholds.h"
 
 namespace sylva::render {
 
 namespace {
-
-// The plants' level-of-detail error in the shadow maps, in cascade texels: the width of
-// the shadow lookup's PCF box (shaders/shading/shadows.glsl), over which an edge fades.
-constexpr double kShadowErrorTexels = 3.0;
 
 // std430 mirrors of the shader structs (shaders/vegetation/ellipsoid.vert, line.vert).
 struct GpuEllipsoid {
@@ -298,6 +296,7 @@ Result<std::uint32_t> VegetationRenderer::addSpecies(std::shared_ptr<const Plant
     glNamedBufferStorage(lineBuffer_.get(), GLsizeiptr(lines.size() * sizeof(GpuLine)),
                          lines.data(), 0);
 
+    appendShadowThresholds(*asset);
     species->mesh = uploadModel(asset->model, instanceBuffer_.get());
     species->leafLuminance = meanLeafLuminance(lod);
     SpeciesLod description = LodSelector::describe(*asset, transitionBand);
@@ -658,6 +657,46 @@ void VegetationRenderer::drawMeshes(const std::vector<std::unique_ptr<Vegetation
     }
 }
 
+void VegetationRenderer::appendShadowThresholds(const PlantAsset& asset) {
+    const PlantLod& lod = asset.lod;
+    const std::vector<ShadowThreshold> levels = shadowThresholds(asset.model, lod);
+    for (const LodEllipsoid& e : lod.ellipsoids) {
+        shadowThresholds_.push_back(e.level < levels.size()
+                                        ? glm::vec2(levels[e.level].low, levels[e.level].high)
+                                        : glm::vec2(e.alphaThreshold));
+    }
+    std::vector<glm::vec2> upload = shadowThresholds_;
+    if (upload.empty()) {
+        upload.resize(1);  // an empty buffer is not bindable as storage
+    }
+    shadowThresholdBuffer_ = createGlBuffer();
+    glNamedBufferStorage(shadowThresholdBuffer_.get(),
+                         GLsizeiptr(upload.size() * sizeof(glm::vec2)), upload.data(), 0);
+}
+
+std::optional<std::uint64_t> VegetationRenderer::shadowCacheKey(const ShadowView& view) const {
+    ContentHash hash;
+    if (view.cascade->terrainOnly || species_.empty() || shadowBatches_.empty()) {
+        return hash.value();  // drawShadow draws nothing
+    }
+    const VegetationSettings& settings = shadowSettings_;
+    const glm::dvec3 camera = view.lightRotation * view.camera->position;
+    const double texel = view.cascade->texelSize;
+    hash.add(std::floor(camera.x / texel)).add(std::floor(camera.y / texel));
+    hash.add(std::floor(camera.z / texel));
+    hash.add(int(settings.method)).add(settings.quality).add(settings.minimumPixels);
+    hash.add(settings.transitionBand).add(settings.closeUpMesh).add(settings.shadowErrorTexels);
+    hash.add(species_.size()).add(ellipsoidCount_).add(lineCount_);
+    for (std::size_t i = 0; i < species_.size(); ++i) {
+        const LeafState state = i < leafStates_.size() ? leafStates_[i] : LeafState{};
+        hash.add(state.leafFraction);
+    }
+    for (const InstanceBatch* batch : shadowBatches_) {
+        hash.add(batch->contentHash);
+    }
+    return hash.value();
+}
+
 void VegetationRenderer::drawShadow(const ShadowView& view) {
     if (view.cascade->terrainOnly || species_.empty() || shadowBatches_.empty()) {
         return;
@@ -671,13 +710,15 @@ void VegetationRenderer::drawShadow(const ShadowView& view) {
     // texel: finer crown detail is filtered away, and one-texel selection drew the finest
     // levels and meshes of hundreds of trees into every cascade (docs/benchmarks.md,
     // shadow_frame_ratio). Plants still cast down to settings.minimumPixels texels.
+    // (settings.shadowErrorTexels, 3 by default.)
     Camera light = *view.camera;
     light.axes = glm::transpose(view.lightRotation);
     LodSelectionSettings selection;
-    selection.pixelAngle = kShadowErrorTexels * cascade.texelSize;
+    SYLVA_CHECK(settings.shadowErrorTexels > 0.0);
+    selection.pixelAngle = settings.shadowErrorTexels * cascade.texelSize;
     selection.fixedDistance = 1.0;
     selection.quality = settings.quality;
-    selection.minimumPixels = settings.minimumPixels / kShadowErrorTexels;
+    selection.minimumPixels = settings.minimumPixels / settings.shadowErrorTexels;
     selection.transitionBand = settings.transitionBand;
     selection.closeUpMesh = settings.closeUpMesh;
     // Impostors cast the LoD's shadows (an impostor faces the camera, not the sun).
@@ -697,6 +738,7 @@ void VegetationRenderer::drawShadow(const ShadowView& view) {
     selection.sidePlanes[3] = glm::vec3(0, -1, 0);
     selection.sideOffsets[3] = float(halfWidth + center.y);
     shadowSelector_.select(shadowBatches_, lods_, light, selection, shadowSelection_);
+    ++statistics_.shadowCascades;
     if (shadowSelection_.instances.empty()) {
         return;
     }
@@ -733,6 +775,9 @@ void VegetationRenderer::drawShadowRuns(const ShadowView& view,
         program.setFloat("uMaximumPointSize", maximumPointSize_);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, pass == 0 ? 0 : 1,
                          pass == 0 ? ellipsoidBuffer_.get() : lineBuffer_.get());
+        if (pass == 0) {
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, shadowThresholdBuffer_.get());
+        }
         for (const DrawRun& run : shadowSelection_.runs) {
             const std::uint32_t count = pass == 0 ? run.ellipsoids : run.lines;
             if (run.kind != DrawRun::Kind::Primitives || count == 0) {

@@ -1,9 +1,12 @@
 #version 450 core
 // Ray-cast ellipsoid depth for the sun's shadow map (orthographic: the ray through a
 // texel runs along the light's -z from the ellipsoid's top). The LoD's noise alpha test
-// (§3.4.1, the species' own threshold and cells) perforates the crown as in the image, so
-// the filtered shadow lookup sees the crown's transmittance; the screen-door fades of the
-// LoD transitions apply as in the G-buffer pass.
+// (§3.4.1: front hit, then the back hit where the front is perforated, as
+// PrimitiveRasterizer calibrated it; the level's cells; the level's shadow threshold from
+// core/plantlod/ShadowThresholds, so every level covers what the leaves cover seen from
+// the sun's heights) perforates the crown, so the filtered shadow lookup sees the crown's
+// transmittance; the screen-door fades of the LoD transitions apply as in the G-buffer
+// pass.
 #include "../vegetation/vegetation.glsl"
 
 layout(location = 0) flat in mat3 vToLocal;
@@ -27,8 +30,6 @@ void main() {
     float h = b * b - a * (dot(origin, origin) - 1.0);
     float t = (-b - sqrt(max(h, 0.0))) / a;
     vec3 q = origin + t * direction;
-    vec3 width = fwidth(q);  // before any discard
-    float footprint = max(max(width.x, width.y), width.z);
     if (h < 0.0) {
         discard;
     }
@@ -36,12 +37,22 @@ void main() {
     if (dither >= vFadeNoise.x || dither < vFadeNoise.y) {
         discard;
     }
+    // The level's own cells, not capped at the texel size as the image pass caps them
+    // against aliasing: point samples of white noise keep its mean, and the PCF lookup
+    // filters the pattern, whereas fewer cells per diameter put the front and back hits
+    // of a ray into the same cell, so one test decided both and the crown's opacity
+    // varied with its size in texels (lighter crowns at the 3-texel shadow level).
     float cells = vFadeNoise.z;
-    if (footprint > 0.0) {
-        cells = min(cells, exp2(floor(log2(max(1.0 / footprint, 1.0)))));
-    }
     if (vFadeNoise.w > 0.0 && ellipsoidNoise(clamp(q, -1.0, 1.0), cells, vSeedDither.x) < vFadeNoise.w) {
-        discard;
+        // Perforated front: test the back hit too, as the image pass and the LoD's
+        // calibration (PrimitiveRasterizer) do; one test let 1 − t of the light through
+        // where the level was calibrated to 1 − t², i.e. coarse levels were ~40 % more
+        // transparent than the fine ones (docs/benchmarks.md, shading).
+        t = (-b + sqrt(max(h, 0.0))) / a;
+        q = origin + t * direction;
+        if (ellipsoidNoise(clamp(q, -1.0, 1.0), cells, vSeedDither.x) < vFadeNoise.w) {
+            discard;
+        }
     }
     gl_FragDepth = uProjection[2][2] * (vLocalCenterTop.w - t) + uProjection[3][2];
 }

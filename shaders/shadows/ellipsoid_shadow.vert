@@ -5,7 +5,7 @@
 // (±sqrt(S_xx), ±sqrt(S_yy) with S = M Mᵀ) and sits at the depth of the point nearest the
 // sun (z + sqrt(S_zz)); the fragment shader casts the ray from there (depth_greater).
 // Instances come from LodSelector in the light frame (camera-relative, rotated by the
-// light rotation) with the tolerated error of one shadow texel.
+// light rotation) with the plants' shadow error (VegetationSettings::shadowErrorTexels).
 #include "../vegetation/vegetation.glsl"
 
 struct Ellipsoid {
@@ -16,6 +16,11 @@ struct Ellipsoid {
     vec4 color;        // rgb linear, w error maximum
 };
 layout(std430, binding = 0) readonly buffer Ellipsoids { Ellipsoid ellipsoids[]; };
+// The noise thresholds of each ellipsoid in the shadow pass (core/plantlod/
+// ShadowThresholds): its level's thresholds for the leaves' coverage seen 10° (x) and 55°
+// (y) above the plant's horizon, instead of the image's axis0.w (calibrated mostly on
+// views 10° above the horizon, too transparent seen from higher up).
+layout(std430, binding = 2) readonly buffer ShadowThresholds { vec2 shadowThresholds[]; };
 
 layout(location = 0) in vec4 aAxisX;  // w: tolerated error (metres per texel)
 layout(location = 1) in vec4 aAxisY;  // w: dither offset
@@ -72,6 +77,11 @@ void main() {
     mat3 toLocal = inverse(shape);
     vToLocal = toLocal;
     vLocalCenterTop = vec4(toLocal * center, top);
-    vFadeNoise = vec4(fade, exp2(e.centerNoise.w), seasonalThreshold(e.axis0.w));
+    // The sun's elevation above the plant's horizon: its up axis (model z) in the light
+    // frame, whose +z points to the sun.
+    float sunElevation = degrees(asin(clamp(aAxisZ.z / length(aAxisZ.xyz), -1.0, 1.0)));
+    vec2 thresholds = shadowThresholds[primitive];
+    float threshold = mix(thresholds.x, thresholds.y, clamp((sunElevation - 10.0) / 45.0, 0.0, 1.0));
+    vFadeNoise = vec4(fade, exp2(e.centerNoise.w), seasonalThreshold(threshold));
     vSeedDither = uvec2(ellipsoidNoiseSeed(e.centerNoise.xyz), floatBitsToUint(aAxisY.w));
 }

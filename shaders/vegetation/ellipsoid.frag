@@ -5,7 +5,8 @@
 // distance along -z), declared depth_less because the hit is never nearer than the
 // sprite's depth (the ellipsoid's nearest point); the noise alpha test of §3.4.1 with
 // its cell count limited by the screen-space derivative (the mip level fwidth allows);
-// normal perturbed by the noise; screen-door LoD fades.
+// a perforated front hit goes on to the back hit, tested again (§3.4.1 as calibrated by
+// PrimitiveRasterizer); normal perturbed by the noise; screen-door LoD fades.
 #include "vegetation.glsl"
 #include "farfield_fade.glsl"
 
@@ -64,7 +65,15 @@ void main() {
     }
     q = clamp(q, -1.0, 1.0);
     if (vFadeNoise.w > 0.0 && ellipsoidNoise(q, cells, vSeedDither.x) < vFadeNoise.w) {
-        discard;
+        // Perforated front: the ray goes on to the back of the ellipsoid, which the noise
+        // tests again (as PrimitiveRasterizer, whose images calibrated the level's
+        // threshold and scale: a ray through the crown meets two layers, opacity 1 − t²
+        // where one test gave 1 − t and coarse levels drew ~60 % of their coverage).
+        q = clamp(closest + back * localDirection, -1.0, 1.0);
+        t = along + back;
+        if (ellipsoidNoise(q, cells, vSeedDither.x) < vFadeNoise.w) {
+            discard;
+        }
     }
     vec3 hit = start * (1.0 + t);
     gl_FragDepth = uNear / max(-hit.z, uNear);

@@ -56,9 +56,10 @@ vec3 ellipsoidNoise3(vec3 q, float cells, uint seed) {
 }
 
 // Seasons (issue 21 item 3, core/seasons/Phenology.h): the species' leaf state of the
-// render date. Leaf density thins the crown where the level of detail draws it: an
-// ellipsoid of alpha threshold t keeps the noise cells above t, a share 1 − t; with a
-// leaf fraction f it keeps a share f (1 − t), i.e. threshold 1 − f (1 − t).
+// render date. Leaf density thins the crown where the level of detail draws it: a ray
+// through an ellipsoid of alpha threshold t tests the noise at the front and, where that
+// is perforated, at the back hit, so it stops with probability 1 − t²; with a leaf
+// fraction f it must stop with f (1 − t²), i.e. threshold sqrt(1 − f (1 − t²)).
 uniform float uLeafFraction = 1.0;
 // rgb: the autumn colour divided by the species' mean leaf luminance, w: how far the
 // leaves have turned. A leaf of luminance L turns towards rgb × L, so the crown's
@@ -66,7 +67,8 @@ uniform float uLeafFraction = 1.0;
 uniform vec4 uAutumn = vec4(0.0);
 
 float seasonalThreshold(float threshold) {
-    return 1.0 - uLeafFraction * (1.0 - max(threshold, 0.0));
+    float t = max(threshold, 0.0);
+    return sqrt(max(1.0 - uLeafFraction * (1.0 - t * t), 0.0));
 }
 
 vec3 seasonalLeafColour(vec3 colour) {

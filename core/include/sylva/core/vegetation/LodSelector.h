@@ -63,6 +63,9 @@ struct InstanceBatch {
     glm::vec3 boundsCenter{0.0f};
     float boundsRadius = 0.0f;
     float largestInstanceRadius = 0.0f;
+    // A hash of origin and instances, set by makeBatch (batches are not changed after
+    // it): what the shadow cache (VegetationRenderer::shadowCacheKey) knows a batch by.
+    std::uint64_t contentHash = 0;
 };
 
 // One instance placed on the globe: `up` is the ellipsoid normal at its base, heading

@@ -48,6 +48,10 @@ struct VegetationSettings {
     double transitionBand = 0.35;  // screen-door fade width, in ln(error)
     bool closeUpMesh = true;       // hand over from the finest LoD to the source mesh
     float normalNoise = 0.6f;      // normal perturbation of ellipsoids (§3.4.1)
+    // The plants' level-of-detail error in the shadow maps, in cascade texels (> 0): the
+    // width of the shadow lookup's PCF box (shaders/shading/shadows.glsl), over which an
+    // edge fades anyway. Plants cast down to minimumPixels / shadowErrorTexels texels.
+    double shadowErrorTexels = 3.0;
     // Occlusion culling (issue 21, OcclusionCuller): the plants are drawn in rings of
     // distance, nearest first — up to occluderDistance, then each ring occlusionRingRatio
     // times as far, the last one unbounded — and before each ring the depth buffer (terrain,
@@ -81,6 +85,9 @@ struct VegetationStatistics {
     // drawn before it to finish).
     std::size_t occludedInstances = 0;
     double occlusionSeconds = 0;
+    // Shadow cascades drawShadow drew plants into since the last draw() (a cascade whose
+    // depth ShadowMaps copied from its cache is not drawn).
+    std::size_t shadowCascades = 0;
 };
 
 class VegetationRenderer : public ShadowCaster {
@@ -114,11 +121,18 @@ public:
               const VegetationSettings& settings);
 
     // Shadow caster (seed 001 §7.1): the batches and settings of the last draw() (which
-    // must still be alive) selected again for the cascade's orthographic box with one
-    // texel as the tolerated error; ellipsoids and lines ray-cast along the light
-    // (shaders/shadows), with the LoD's noise alpha test as the crown's transmittance;
-    // meshes and billboard clouds alpha-tested. Skips the terrain-only cascade.
+    // must still be alive) selected again for the cascade's orthographic box with
+    // settings.shadowErrorTexels texels as the tolerated error; ellipsoids and lines
+    // ray-cast along the light (shaders/shadows), with the LoD's noise alpha test (the
+    // levels' ShadowThresholds) as the crown's transmittance; meshes and billboard clouds
+    // alpha-tested. Skips the terrain-only cascade.
     void drawShadow(const ShadowView& view) override;
+    // What drawShadow's depth depends on besides the cascade's box and the sun (which
+    // ShadowMaps adds): the camera in whole cascade texels (the instances are drawn
+    // camera-relative), the settings that select and draw, the species and their leaf
+    // states, and each batch of the last draw() by its InstanceBatch::contentHash (set by
+    // LodSelector::makeBatch; batches are not changed after it).
+    std::optional<std::uint64_t> shadowCacheKey(const ShadowView& view) const override;
 
     const VegetationStatistics& statistics() const { return statistics_; }
     // The selection of the last draw() (with occlusion culling: of its farthest ring).
@@ -136,6 +150,10 @@ private:
     bool mayExceedPointSize(const DrawRun& run, double pixelAngle, double cornerTangent,
                             double near) const;
     void drawShadowRuns(const ShadowView& view, const VegetationSettings& settings);
+    // Appends the species' per-ellipsoid shadow thresholds (core/plantlod/ShadowThresholds:
+    // each level's thresholds for the leaves' coverage seen from 10° and 55°) and
+    // re-uploads them.
+    void appendShadowThresholds(const PlantAsset& asset);
     // drawRing's Mesh and Billboard runs (the source mesh and billboard-cloud levels).
     void drawMeshRuns(const glm::dmat4& projection, double near, int pixelsWide, int pixelsHigh,
                       const VegetationSettings& settings, bool handover);
@@ -169,6 +187,10 @@ private:
     std::vector<std::unique_ptr<Species>> species_;
     std::vector<SpeciesLod> lods_;
     GlBuffer ellipsoidBuffer_, lineBuffer_;  // all species, concatenated
+    // The ellipsoids' noise thresholds in the shadow pass (ShadowThreshold low, high),
+    // parallel to ellipsoidBuffer_.
+    std::vector<glm::vec2> shadowThresholds_;
+    GlBuffer shadowThresholdBuffer_;
     std::uint32_t ellipsoidCount_ = 0, lineCount_ = 0;
     GlBuffer instanceBuffer_;
     std::size_t instanceCapacity_ = 0;
