@@ -25,17 +25,6 @@ SchedulerStatistics since(const SchedulerStatistics& now, const SchedulerStatist
     return change;
 }
 
-void add(SchedulerStatistics& sum, const SchedulerStatistics& s) {
-    sum.hits += s.hits;
-    sum.misses += s.misses;
-    sum.diskHits += s.diskHits;
-    sum.bytes += s.bytes;
-    sum.tiles += s.tiles;
-    sum.evictions += s.evictions;
-    sum.failures += s.failures;
-    sum.produceSeconds += s.produceSeconds;
-}
-
 void printRow(std::FILE* out, const std::string& name, const SchedulerStatistics& s) {
     std::fprintf(out, "%-28s %9zu %9zu %9zu %9zu %11.2f %7zu %9.1f\n", name.c_str(), s.misses,
                  s.diskHits, s.hits, s.evictions, s.produceSeconds, s.tiles,
@@ -66,8 +55,8 @@ void TileStatisticsReport::print(const Scheduler& scheduler, std::FILE* out) {
         const auto before = previous_.find(source.hash);
         const SchedulerStatistics change =
             before == previous_.end() ? source : since(source, before->second);
-        add(byName[source.name], change);
-        add(total, change);
+        byName[source.name] += change;
+        total += change;
         next.emplace(source.hash, source);
     }
     std::fprintf(out, "%-28s %9s %9s %9s %9s %11s %7s %9s\n", "source", "produced", "from disk",

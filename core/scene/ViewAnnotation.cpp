@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "CairoSurface.h"
 #include "sylva/core/base/Check.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/scene/ImageProjection.h"
@@ -93,42 +94,6 @@ void planProposal(const Camera& camera, const ImageProjection& projection,
         annotations.parts.push_back(
             {pixel->x, i < proposal.labels.size() ? proposal.labels[i] : std::to_string(i + 1)});
     }
-}
-
-cairo_surface_t* surfaceOf(const RgbaImage& image) {
-    cairo_surface_t* surface =
-        cairo_image_surface_create(CAIRO_FORMAT_RGB24, image.width, image.height);
-    cairo_surface_flush(surface);
-    unsigned char* data = cairo_image_surface_get_data(surface);
-    const int stride = cairo_image_surface_get_stride(surface);
-    for (int y = 0; y < image.height; ++y) {
-        auto* row = reinterpret_cast<std::uint32_t*>(data + std::size_t(y) * std::size_t(stride));
-        for (int x = 0; x < image.width; ++x) {
-            const std::uint8_t* p = image.at(x, y);
-            row[x] = 0xff000000u | (std::uint32_t(p[0]) << 16) | (std::uint32_t(p[1]) << 8) | p[2];
-        }
-    }
-    cairo_surface_mark_dirty(surface);
-    return surface;
-}
-
-RgbaImage imageOf(cairo_surface_t* surface, int width, int height) {
-    cairo_surface_flush(surface);
-    const unsigned char* data = cairo_image_surface_get_data(surface);
-    const int stride = cairo_image_surface_get_stride(surface);
-    RgbaImage image(width, height);
-    for (int y = 0; y < height; ++y) {
-        const auto* row =
-            reinterpret_cast<const std::uint32_t*>(data + std::size_t(y) * std::size_t(stride));
-        for (int x = 0; x < width; ++x) {
-            std::uint8_t* p = image.at(x, y);
-            p[0] = std::uint8_t(row[x] >> 16);
-            p[1] = std::uint8_t(row[x] >> 8);
-            p[2] = std::uint8_t(row[x]);
-            p[3] = 255;
-        }
-    }
-    return image;
 }
 
 double textWidth(cairo_t* cairo, const std::string& value, bool bold) {
@@ -259,12 +224,12 @@ ViewAnnotations ViewAnnotation::plan(const Camera& camera, int width, int height
 
 RgbaImage ViewAnnotation::draw(const RgbaImage& image, const ViewAnnotations& annotations) {
     SYLVA_CHECK(image.width == annotations.width && image.height == annotations.height);
-    cairo_surface_t* surface = surfaceOf(image);
+    cairo_surface_t* surface = cairoSurfaceOf(image, CAIRO_FORMAT_RGB24);
     cairo_t* cairo = cairo_create(surface);
     drawTopBand(cairo, annotations);
     drawProposal(cairo, annotations);
     cairo_destroy(cairo);
-    RgbaImage out = imageOf(surface, image.width, image.height);
+    RgbaImage out = opaqueImageOf(surface, image.width, image.height);
     cairo_surface_destroy(surface);
     return out;
 }

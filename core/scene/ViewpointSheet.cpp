@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "CairoSurface.h"
 #include "sylva/core/base/AtomicFile.h"
 
 namespace sylva {
@@ -31,27 +32,6 @@ double blockHeight(const ViewpointRecord& record, const SheetLayout& layout) {
 cairo_status_t appendBytes(void* closure, const unsigned char* data, unsigned int length) {
     static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
     return CAIRO_STATUS_SUCCESS;
-}
-
-// The image as a cairo ARGB32 surface (premultiplied, native-endian), owned by the caller.
-cairo_surface_t* imageSurface(const RgbaImage& image) {
-    cairo_surface_t* surface =
-        cairo_image_surface_create(CAIRO_FORMAT_ARGB32, image.width, image.height);
-    cairo_surface_flush(surface);
-    unsigned char* data = cairo_image_surface_get_data(surface);
-    const int stride = cairo_image_surface_get_stride(surface);
-    for (int y = 0; y < image.height; ++y) {
-        auto* row = reinterpret_cast<std::uint32_t*>(data + std::size_t(y) * std::size_t(stride));
-        for (int x = 0; x < image.width; ++x) {
-            const std::uint8_t* p = image.at(x, y);
-            const std::uint32_t a = p[3];
-            const auto premultiply = [a](std::uint32_t c) { return (c * a + 127) / 255; };
-            row[x] = (a << 24) | (premultiply(p[0]) << 16) | (premultiply(p[1]) << 8) |
-                     premultiply(p[2]);
-        }
-    }
-    cairo_surface_mark_dirty(surface);
-    return surface;
 }
 
 // Draws the sheet in metres (the caller's transform maps metres to device units).
@@ -124,8 +104,9 @@ Status writePdf(const RgbaImage& image, const PrintFormat& print, const Viewpoin
         appendBytes, &bytes, page.x * kPointsPerMetre, page.y * kPointsPerMetre);
     cairo_t* cairo = cairo_create(surface);
     cairo_scale(cairo, kPointsPerMetre, kPointsPerMetre);
-    cairo_surface_t* picture = imageSurface(image);
-    cairo_surface_t* map = layout.locationMap ? imageSurface(*layout.locationMap) : nullptr;
+    cairo_surface_t* picture = cairoSurfaceOf(image, CAIRO_FORMAT_ARGB32);
+    cairo_surface_t* map =
+        layout.locationMap ? cairoSurfaceOf(*layout.locationMap, CAIRO_FORMAT_ARGB32) : nullptr;
     drawSheet(cairo, picture, map, image, print, record, layout, page);
     cairo_show_page(cairo);
     cairo_destroy(cairo);
@@ -158,8 +139,9 @@ Status writePng(const RgbaImage& image, const PrintFormat& print, const Viewpoin
     cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
     cairo_t* cairo = cairo_create(surface);
     cairo_scale(cairo, pixelsPerMetre, pixelsPerMetre);
-    cairo_surface_t* picture = imageSurface(image);
-    cairo_surface_t* map = layout.locationMap ? imageSurface(*layout.locationMap) : nullptr;
+    cairo_surface_t* picture = cairoSurfaceOf(image, CAIRO_FORMAT_ARGB32);
+    cairo_surface_t* map =
+        layout.locationMap ? cairoSurfaceOf(*layout.locationMap, CAIRO_FORMAT_ARGB32) : nullptr;
     drawSheet(cairo, picture, map, image, print, record, layout, page);
     cairo_destroy(cairo);
     std::string bytes;

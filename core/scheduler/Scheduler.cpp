@@ -572,19 +572,23 @@ void Scheduler::waitForProgress(std::chrono::milliseconds timeout) {
     progress_.wait_for(lock, timeout);
 }
 
+SchedulerStatistics& SchedulerStatistics::operator+=(const SchedulerStatistics& other) {
+    hits += other.hits;
+    misses += other.misses;
+    diskHits += other.diskHits;
+    bytes += other.bytes;
+    tiles += other.tiles;
+    evictions += other.evictions;
+    failures += other.failures;
+    produceSeconds += other.produceSeconds;
+    return *this;
+}
+
 SchedulerStatistics Scheduler::totals() const {
     std::lock_guard lock(mutex_);
     SchedulerStatistics total;
     for (const auto& [hash, cache] : caches_) {
-        const SchedulerStatistics& s = cache.statistics;
-        total.hits += s.hits;
-        total.misses += s.misses;
-        total.diskHits += s.diskHits;
-        total.bytes += s.bytes;
-        total.tiles += s.tiles;
-        total.evictions += s.evictions;
-        total.failures += s.failures;
-        total.produceSeconds += s.produceSeconds;
+        total += cache.statistics;
     }
     return total;
 }

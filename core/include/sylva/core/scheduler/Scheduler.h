@@ -83,6 +83,9 @@ struct SchedulerStatistics {
     std::size_t evictions = 0;  // tiles pruned for the budget
     std::size_t failures = 0;   // distinct failed tiles
     double produceSeconds = 0;  // produce() time excluding nested inputs and waits
+
+    // Adds `other`'s counters, cached tiles and bytes (name and hash stay this one's).
+    SchedulerStatistics& operator+=(const SchedulerStatistics& other);
 };
 
 class Scheduler final : public TileProvider {
