@@ -50,10 +50,9 @@ struct FrameRecord {
 // A hole: a pixel that shows sky (depth 0) although its view ray passes at least
 // `kHoleDepth` metres under the ellipsoid's surface (the ellipsoid made a sphere by
 // scaling z), beyond twice the near plane. Rays that only graze the ellipsoid are not
-// holes: the terrain rings are a mesh whose edges are chords of the surface (sagitta
-// up to ~3 m at the coarsest ring spacing seen from low heights, ~20 km for the rings
-// of level 0 seen from space), so at the horizon and the limb the sky rightly shows
-// through where the exact ellipsoid would still be hit.
+// counted: the terrain rings lift their vertices by their cells' sagitta (terrain.vert)
+// so the mesh encloses the surface, but its heights are floats and its relief is
+// bilinear between texels, so a grazing ray may still pass a few metres under it.
 constexpr double kHoleDepth = 50.0;
 
 struct HoleCount {

@@ -30,6 +30,10 @@ namespace {
 // than the one it stands on (the finer tile is still being produced), metres.
 constexpr double kEstimatedClearance = 0.5;
 
+int levelRows(const RenderSettings& settings) {
+    return settings.levelRows > 0 ? settings.levelRows : settings.height;
+}
+
 // A plant asset's build in the background: serial on its own thread (like the Scheduler's
 // workers) and five nice steps below the render thread, so frames keep their CPU.
 Result<std::shared_ptr<const PlantAsset>> buildAssetInBackground(const PlantModelSource* model) {
@@ -153,7 +157,7 @@ Result<double> SceneRenderer::readyGround(const TerrainLayers& layers, TileProvi
     // first; every tile probed is one the terrain's clipmaps want anyway.
     const double estimate = groundKnown_ ? groundHeight_ : 0.0;
     const LevelRange levels = terrain_->visibleLevels(
-        camera, std::max(camera.geodetic.height - estimate, 0.01), settings.height);
+        camera, std::max(camera.geodetic.height - estimate, 0.01), levelRows(settings));
     for (int level = levels.finest; level >= 0; --level) {
         Result<std::optional<double>> ground =
             query.readyGroundHeight(latitude, longitude, level, level);
@@ -189,7 +193,7 @@ Result<LevelRange> SceneRenderer::prepareTerrain(const TerrainLayers& layers,
             return ground.error();
         }
         levels = terrain_->visibleLevels(
-            camera, std::max(camera.geodetic.height - ground.value(), 0.01), settings.height);
+            camera, std::max(camera.geodetic.height - ground.value(), 0.01), levelRows(settings));
         ground =
             query.groundHeight(camera.geodetic.latitude, camera.geodetic.longitude, levels.finest);
         statistics_.groundLevel = levels.finest;
@@ -209,7 +213,7 @@ Result<LevelRange> SceneRenderer::prepareTerrain(const TerrainLayers& layers,
     double aboveTerrain = camera.geodetic.height - groundHeight;
     if (!settings.waitForTiles) {
         levels = terrain_->visibleLevels(camera, std::max(aboveTerrain, kEstimatedClearance),
-                                         settings.height);
+                                         levelRows(settings));
         // The nadir probe's level is not the level the camera was placed on: a coarser
         // one's ground may pass over a camera on finer terrain, a finer one's (ready
         // before the levels between) under a walker the viewer placed on the finest
@@ -224,7 +228,7 @@ Result<LevelRange> SceneRenderer::prepareTerrain(const TerrainLayers& layers,
                       groundHeight);
         return Error{buffer};
     }
-    levels = terrain_->visibleLevels(camera, aboveTerrain, settings.height);
+    levels = terrain_->visibleLevels(camera, aboveTerrain, levelRows(settings));
     statistics_.heightAboveTerrain = aboveTerrain;
     return terrain_->update(layers, provider, camera, levels, std::nullopt, settings.waitForTiles);
 }

@@ -410,6 +410,8 @@ std::uint64_t TerrainRenderer::drawRings(ShaderProgram& program, const Camera& c
     program.setMat4("uProjection", glm::mat4(projection));
     program.setFloat("uClipmapSize", float(size));
     program.setInt("uOcean", ocean ? 1 : 0);
+    program.setFloat("uRingStep", float(std::exp2(1.0 / settings_.ringsPerLevel) - 1.0));
+    program.setFloat("uBearingStep", float(2.0 * std::numbers::pi / settings_.columns));
     program.setInt("uHeight", 0);
     for (const auto& [clipmap, name] : {std::pair{height_.get(), "uHeightLevels[0]"},
                                         std::pair{normals_.get(), "uDetailLevels[0]"}}) {

@@ -16,21 +16,39 @@ double blend(double old, double value) {
     return old < 0 ? value : old + kAverage * (value - old);
 }
 
+// The vegetation's ladder position of a level (the resolution levels keep its coarsest).
+int vegetationLevel(int level) {
+    return std::min(level, FrameBudget::kVegetationLevels - 1);
+}
+
+double pixelFraction(int level) {
+    const double scale = FrameBudget::scaleOf(level);
+    return scale * scale;
+}
+
 }  // namespace
 
 FrameBudget::FrameBudget(double budgetMilliseconds) : budget_(budgetMilliseconds) {}
 
+double FrameBudget::scaleOf(int level) {
+    // Each resolution level halves the pixels: 1/sqrt(2) of the width and height.
+    const int steps = std::clamp(level - (kVegetationLevels - 1), 0, kResolutionLevels);
+    return std::pow(std::sqrt(0.5), steps);
+}
+
 VegetationSettings FrameBudget::settingsFor(const VegetationSettings& settings) const {
+    const int level = vegetationLevel(level_);
     VegetationSettings out = settings;
-    out.quality = settings.quality / std::pow(kQualityStep, level_);
-    out.minimumPixels = settings.minimumPixels * std::pow(kPixelStep, level_);
+    out.quality = settings.quality / std::pow(kQualityStep, level);
+    out.minimumPixels = settings.minimumPixels * std::pow(kPixelStep, level);
     return out;
 }
 
 double FrameBudget::predict(int level) const {
-    const double fixed = std::max(fixedMilliseconds_, 0.0);
+    const double fixed = std::max(fixedMilliseconds_, 0.0) * pixelFraction(level);
     const double perPrimitive = std::max(millisecondsPerPrimitive_, 0.0);
-    return fixed + perPrimitive * primitives_ * std::pow(ratio_, level - level_);
+    return fixed + perPrimitive * primitives_ *
+                       std::pow(ratio_, vegetationLevel(level) - vegetationLevel(level_));
 }
 
 void FrameBudget::record(const FrameMeasurement& frame) {
@@ -39,14 +57,16 @@ void FrameBudget::record(const FrameMeasurement& frame) {
     }
     const double primitives = static_cast<double>(frame.primitives);
     fixedMilliseconds_ = blend(
-        fixedMilliseconds_, std::max(frame.frameMilliseconds - frame.vegetationMilliseconds, 0.0));
+        fixedMilliseconds_, std::max(frame.frameMilliseconds - frame.vegetationMilliseconds, 0.0) /
+                                pixelFraction(level_));
     if (primitives > 0) {
         millisecondsPerPrimitive_ =
             blend(millisecondsPerPrimitive_, frame.vegetationMilliseconds / primitives);
     }
     // One level apart with the camera still: the count ratio of the two levels.
     if (!frame.cameraMoved && previousLevel_ >= 0 && std::abs(previousLevel_ - level_) == 1 &&
-        primitives > 0 && previousPrimitives_ > 0) {
+        level_ < kVegetationLevels && previousLevel_ < kVegetationLevels && primitives > 0 &&
+        previousPrimitives_ > 0) {
         const double measured = level_ > previousLevel_ ? primitives / previousPrimitives_
                                                         : previousPrimitives_ / primitives;
         ratio_ = std::clamp(std::exp(blend(std::log(ratio_), std::log(measured))), 0.2, 0.95);

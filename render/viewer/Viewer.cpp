@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 
 #include "ScriptPlayer.h"
 #include "ViewerInput.h"
@@ -19,6 +21,34 @@ constexpr double kLookRadiansPerPixel = 0.004;
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// `frame` enlarged bilinearly (on the 8-bit sRGB values: it only stands in while the
+// budget lowers the resolution) to width x height, so the overlay's text is drawn at
+// the window's size.
+RgbaImage enlarged(const Image& frame, int width, int height) {
+    RgbaImage out(width, height);
+    const double sx = double(frame.width) / width, sy = double(frame.height) / height;
+    for (int y = 0; y < height; ++y) {
+        const double fy = std::clamp((y + 0.5) * sy - 0.5, 0.0, frame.height - 1.0);
+        const int y0 = int(fy), y1 = std::min(y0 + 1, frame.height - 1);
+        const double wy = fy - y0;
+        for (int x = 0; x < width; ++x) {
+            const double fx = std::clamp((x + 0.5) * sx - 0.5, 0.0, frame.width - 1.0);
+            const int x0 = int(fx), x1 = std::min(x0 + 1, frame.width - 1);
+            const double wx = fx - x0;
+            const auto texel = [&](int ix, int iy, int c) {
+                return double(frame.pixels[(std::size_t(iy) * frame.width + ix) * 4 + c]);
+            };
+            std::uint8_t* q = out.at(x, y);
+            for (int c = 0; c < 4; ++c) {
+                const double top = texel(x0, y0, c) + wx * (texel(x1, y0, c) - texel(x0, y0, c));
+                const double bottom = texel(x0, y1, c) + wx * (texel(x1, y1, c) - texel(x0, y1, c));
+                q[c] = std::uint8_t(std::lround(top + wy * (bottom - top)));
+            }
+        }
+    }
+    return out;
 }
 
 }  // namespace
@@ -70,15 +100,19 @@ private:
         if (frame.width <= 0) {
             return;
         }
+        int width = 0, height = 0;
+        context_->framebufferSize(width, height);
         RgbaImage shown;
-        shown.width = frame.width;
-        shown.height = frame.height;
-        shown.pixels = frame.pixels;
+        if (frame.width < width && frame.height < height) {
+            shown = enlarged(frame, width, height);
+        } else {
+            shown.width = frame.width;
+            shown.height = frame.height;
+            shown.pixels = frame.pixels;
+        }
         ViewerOverlay::draw(shown, session_.statusLines(),
                             help_ ? ViewerOverlay::helpLines() : std::vector<std::string>{},
                             message_, session_.error());
-        int width = 0, height = 0;
-        context_->framebufferSize(width, height);
         blit_.show(shown, width, height);
         if (panels_) {
             panels_->draw(session_, message_);

@@ -441,10 +441,20 @@ Result<Image> ViewerSession::compose(Image first, Image second) const {
 Status ViewerSession::renderFrame(bool waitForTiles) {
     settleOnGround(waitForTiles);
     RenderSettings settings = setup_.settings;
-    settings.width = width_;
-    settings.height = height_;
+    // A still view whose tiles were all drawn by the last frame is refined: drawn at full
+    // detail and resolution (not measured for the budget) until it changes again.
+    const bool refine = !waitForTiles && !dirty_ && !report_.pending &&
+                        options_.budgetMilliseconds > 0 && frames_ > 0;
+    const bool full = waitForTiles || refine;
+    // Interactive frames past the vegetation's coarsest budget level draw fewer pixels
+    // (FrameBudget::renderScale); the window enlarges them. Screenshots: the window's.
+    const double scale = full ? 1.0 : budget_.renderScale();
+    const int width = std::max(int(std::lround(width_ * scale)), 1);
+    settings.width = width;
+    settings.height = std::max(int(std::lround(height_ * scale)), 1);
+    settings.levelRows = height_;
     if (comparison_ == ComparisonMode::SideBySide) {
-        settings.width = std::max((width_ - kSideBySideGap) / 2, 1);
+        settings.width = std::max((width - kSideBySideGap) / 2, 1);
     }
     settings.sunDirection = sun_;
     settings.atmosphere = setup_.settings.atmosphere && atmosphereLayer_;
@@ -452,8 +462,8 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
     VegetationSettings vegetation = settings.vegetation;
     vegetation.quality *= qualityScale_;
     // Screenshots are full detail (as a batch image); interactive frames fit the budget.
-    settings.vegetation = waitForTiles ? vegetation : budget_.settingsFor(vegetation);
-    if (!waitForTiles) {
+    settings.vegetation = full ? vegetation : budget_.settingsFor(vegetation);
+    if (!full) {
         // The shadow cascades were half of an interactive frame on llvmpipe (issue 20's
         // trace: ~300 of ~600 ms at 320x180 with five 2048² depth passes); a quarter of
         // the texels while interacting, the project's resolution in screenshots.
@@ -462,11 +472,13 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
         // With a budget the vegetation cannot meet any more (its coarsest level), the
         // screen-space ambient occlusion goes too: at 1280x720 on llvmpipe it was the
         // largest pass of a frame (1.1-4.3 s of 2.7-6 s at load 8-11, issue 20's trace).
-        if (options_.budgetMilliseconds > 0 && budget_.level() == FrameBudget::kLevels - 1) {
+        if (options_.budgetMilliseconds > 0 &&
+            budget_.level() >= FrameBudget::kVegetationLevels - 1) {
             settings.ambientOcclusion.enabled = false;
         }
     }
     const bool moved = dirty_;
+    reduced_ = !full && budget_.level() > 0;
     finishedAtFrame_ = scheduler_->finishedTasks();
     const auto start = std::chrono::steady_clock::now();
     Result<Image> image = renderScenario(layers_, settings);
@@ -516,8 +528,10 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
                              statistics.vegetation.billboardInstances;
     measurement.cameraMoved = moved;
     if (!waitForTiles) {
-        const int level = budget_.level();
-        budget_.record(measurement);
+        const int level = refine ? 0 : budget_.level();
+        if (!refine) {
+            budget_.record(measurement);
+        }
         if (options_.onFrame) {
             ViewerFrame frame;
             frame.milliseconds = milliseconds;
@@ -659,7 +673,9 @@ Status ViewerSession::saveCamera(const std::string& name, const std::string& vie
 }
 
 std::string ViewerSession::pick(double x, double y) {
-    const int px = static_cast<int>(x), py = static_cast<int>(y);
+    // Window pixels to the last frame's (smaller while the budget lowers the resolution).
+    const int px = static_cast<int>(x * image_.width / std::max(width_, 1));
+    const int py = static_cast<int>(y * image_.height / std::max(height_, 1));
     if (depth_.empty()) {
         depth_ = renderer_->depth();  // the G-buffer still holds the last frame
     }

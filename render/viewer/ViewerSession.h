@@ -91,7 +91,9 @@ public:
     // failed frame keeps the last image, sets error() and returns the error.
     Status renderFrame(bool waitForTiles);
     // Whether something changed since the last frame or tiles are still arriving.
-    bool needsFrame() const { return dirty_ || report_.pending; }
+    // Also once after a still, complete view drawn below full quality by the budget: it
+    // is redrawn at the window's resolution and full detail (then the viewer idles).
+    bool needsFrame() const { return dirty_ || report_.pending || reduced_; }
     // Whether the view changed since the last frame (not only tiles arriving).
     bool changed() const { return dirty_; }
     NavigationMode mode() const { return mode_; }
@@ -149,6 +151,7 @@ private:
     int width_ = 0;
     int height_ = 0;
     bool dirty_ = true;
+    bool reduced_ = false;  // the last frame was drawn below full quality (budget level > 0)
     Image image_;
     std::vector<float> depth_;  // of the last frame (picking)
     double near_ = 1.0;

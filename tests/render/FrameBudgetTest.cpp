@@ -44,6 +44,46 @@ TEST(FrameBudget, SettlesOnTheFinestLevelThatFitsWithoutOscillating) {
     EXPECT_EQ(budget.level(), 0);
 }
 
+// A frame whose fixed part (terrain, shading: proportional to the pixels drawn) alone
+// exceeds the budget: 400 ms at full resolution, 100,000 primitives at 0.5 µs at every
+// level. With 150 ms the controller must go past the vegetation's coarsest level to the
+// resolution levels, settle on the first that fits (a quarter of the pixels: 100 + 50 ms
+// ... above 150 ms, so an eighth: 50 + 50 ms) without reversals, and come back to full
+// resolution and detail when the fixed part shrinks.
+FrameMeasurement frameWithPixels(const FrameBudget& budget, double fixedAtFullResolution) {
+    FrameMeasurement frame;
+    frame.primitives = 100000;
+    frame.vegetationMilliseconds = 50.0;
+    const double scale = budget.renderScale();
+    frame.frameMilliseconds = fixedAtFullResolution * scale * scale + 50.0;
+    return frame;
+}
+
+TEST(FrameBudget, LowersTheResolutionWhenTheVegetationCannotMeetTheBudget) {
+    FrameBudget budget(150.0);
+    for (int frame = 0; frame < 20; ++frame) {
+        budget.record(frameWithPixels(budget, 400.0));
+    }
+    EXPECT_EQ(budget.level(), FrameBudget::kLevels - 1);
+    EXPECT_NEAR(budget.renderScale() * budget.renderScale(), 0.125, 1e-9);
+    const std::size_t reversals = budget.reversals();
+    for (int frame = 0; frame < 100; ++frame) {
+        budget.record(frameWithPixels(budget, 400.0));
+        EXPECT_EQ(budget.level(), FrameBudget::kLevels - 1);
+    }
+    EXPECT_EQ(budget.reversals(), reversals);
+    // The view becomes light: back to the full resolution and detail, then stays.
+    for (int frame = 0; frame < 80; ++frame) {
+        budget.record(frameWithPixels(budget, 20.0));
+    }
+    EXPECT_EQ(budget.level(), 0);
+    EXPECT_EQ(budget.renderScale(), 1.0);
+    // The vegetation levels draw at the full resolution.
+    for (int level = 0; level < FrameBudget::kVegetationLevels; ++level) {
+        EXPECT_EQ(FrameBudget::scaleOf(level), 1.0) << level;
+    }
+}
+
 TEST(FrameBudget, CoarserLevelsLowerQualityAndDropTheSmallestPlants) {
     FrameBudget budget(10.0);
     budget.record(frameAt(0, 1000000, false));  // 550 ms: far over budget

@@ -55,6 +55,18 @@ private:
     double offset_;
 };
 
+// Sea level everywhere (0 m): the surface is the ellipsoid itself.
+class FlatElevation final : public Source {
+public:
+    FlatElevation() : Source("flat", "test", PortType::Elevation, 1) {
+        setParameterHash(ContentHash().add(std::string_view("flat-v1")).value());
+    }
+    Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override {
+        const TileFormat& format = provider.format();
+        return TilePointer(std::make_shared<ImageTile>(key, format.size, format.border, 1));
+    }
+};
+
 // Distance along `direction` (unit, ECEF) from `origin` to the analytic surface, or
 // a negative value when the ray does not hit it within `maxDistance`.
 double rayCast(const glm::dvec3& origin, const glm::dvec3& direction, double maxDistance) {
@@ -276,6 +288,59 @@ TEST_F(TerrainAccuracy, OneCentimetreMoveChangesTheImageOnlySlightly) {
     Result<Image> second = renderer_->render(layers, *evaluator_, b, settings);
     ASSERT_TRUE(first && second);
     EXPECT_LT(rmse(first.value(), second.value()), 1.5) << "8,000 m plateau";
+}
+
+// From space the limb has no holes: the ring mesh's flat cells are chords of the
+// curved surface (up to ~0.5 km below it at the limb from 1,800 km), so rays grazing
+// the globe passed between them to the sky before the vertices were lifted by their
+// cells' sagitta (the viewer bench's `frames_with_holes`, issue 20). A hole here is a
+// sky pixel whose ray passes more than 50 m under the ellipsoid (made a sphere by
+// scaling z) over a terrain at sea level.
+TEST_F(TerrainAccuracy, TheLimbSeenFromSpaceHasNoHoles) {
+    constexpr int kWidth = 320, kHeight = 180;
+    constexpr double kHoleDepth = 50.0;
+    const double altitude = 1800e3;
+    // Pitched down by the horizon's dip, acos(R / (R + h)): the limb crosses the image.
+    const double dip = std::acos(Ellipsoid::kMeanRadius / (Ellipsoid::kMeanRadius + altitude));
+    Camera c = camera(45.0, 7.0, 0.0, 20.0, -dip / kDegree);
+    c.geodetic.height = altitude;
+    c.position = Ellipsoid::toEcef(c.geodetic);
+    FlatElevation flat;
+    NormalMapSource flatNormals("flat.normals", &flat, 1.0);
+    RenderSettings settings;
+    settings.width = kWidth;
+    settings.height = kHeight;
+    settings.sunDirection = glm::normalize(c.position);
+    settings.atmosphere = false;
+    settings.ocean = false;
+    const TerrainLayers layers{&flat, nullptr, &flatNormals, {}, {}};
+    ASSERT_TRUE(renderer_->render(layers, *evaluator_, c, settings));
+    const std::vector<float> depth = renderer_->depth();
+    const double scale = Ellipsoid::kSemiMajorAxis / Ellipsoid::kSemiMinorAxis;
+    const glm::dvec3 origin(c.position.x, c.position.y, c.position.z * scale);
+    const double inner = Ellipsoid::kSemiMajorAxis - kHoleDepth;
+    const double tanHalf = std::tan(c.verticalFov / 2);
+    const double aspect = double(kWidth) / kHeight;
+    int deepRays = 0, holes = 0;
+    for (int y = 0; y < kHeight; ++y) {
+        for (int x = 0; x < kWidth; ++x) {
+            const glm::dvec3 view(((x + 0.5) / kWidth * 2 - 1) * tanHalf * aspect,
+                                  (1 - (y + 0.5) / kHeight * 2) * tanHalf, -1.0);
+            glm::dvec3 direction = c.axes * glm::normalize(view);
+            direction.z *= scale;
+            const double qa = glm::dot(direction, direction);
+            const double qb = 2.0 * glm::dot(origin, direction);
+            const double qc = glm::dot(origin, origin) - inner * inner;
+            if (qb * qb - 4 * qa * qc < 0.0) {
+                continue;  // the ray stays above the inner sphere: sky may show
+            }
+            ++deepRays;
+            holes += depth[std::size_t(y) * kWidth + x] <= 0.0f ? 1 : 0;
+        }
+    }
+    EXPECT_GT(deepRays, kWidth * kHeight / 4);
+    EXPECT_LT(deepRays, kWidth * kHeight * 3 / 4);  // the limb is in the picture
+    EXPECT_EQ(holes, 0) << holes << " of " << deepRays << " rays under the surface show sky";
 }
 
 // The CPU elevation query gives the ground the GPU draws: a camera placed at 1.7 m

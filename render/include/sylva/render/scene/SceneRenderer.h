@@ -37,6 +37,10 @@ namespace sylva::render {
 struct RenderSettings {
     int width = 1280;
     int height = 720;
+    // Pixel rows the terrain's clipmap levels are chosen for (0: `height`). The viewer
+    // draws budget-reduced frames with the window's levels, so a still view refined to
+    // full resolution wants the same tiles (no wanted list swinging between the two).
+    int levelRows = 0;
     glm::dvec3 sunDirection{1, 0, 0};  // ECEF unit vector towards the sun
     bool atmosphere = true;
     bool ocean = true;

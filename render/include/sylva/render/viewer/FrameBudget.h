@@ -19,6 +19,15 @@
 // global level is what VegetationSettings offers, so the knapsack reduces to a 1-D
 // search along the ladder.
 //
+// Resolution (beyond the seeds, which budget the vegetation only): the terrain rings,
+// the far-field canopy, shadows and shading are the fixed part of a frame, and on
+// llvmpipe they alone exceeded the budget (issue 20: 280-750 ms at 1280x720 for 250 ms).
+// So the ladder goes on past the vegetation's coarsest level with the render resolution:
+// levels kVegetationLevels.. draw at renderScale() 0.71, 0.5, 0.35 of the window's width
+// and height (half, a quarter, an eighth of the pixels; the viewer enlarges the image).
+// The model takes the fixed part as proportional to the pixels drawn (it is mostly
+// fragments on llvmpipe); where it is not, the next measurements correct it.
+//
 // Hysteresis: a coarser level is taken at once when the prediction for the current one
 // exceeds the budget; a finer one only after 4 consecutive frames predicting it below
 // 75 % of the budget. Reversals (a change against the previous one) are counted.
@@ -39,7 +48,9 @@ struct FrameMeasurement {
 
 class FrameBudget {
 public:
-    static constexpr int kLevels = 8;
+    static constexpr int kVegetationLevels = 8;  // levels that coarsen the vegetation
+    static constexpr int kResolutionLevels = 3;  // then levels that lower the resolution
+    static constexpr int kLevels = kVegetationLevels + kResolutionLevels;
 
     // budgetMilliseconds <= 0: no budget (always level 0).
     explicit FrameBudget(double budgetMilliseconds = 0);
@@ -48,6 +59,9 @@ public:
     int level() const { return level_; }
     // `settings` with the level's quality and minimum pixel size (relative to its values).
     VegetationSettings settingsFor(const VegetationSettings& settings) const;
+    // Fraction (0, 1] of the window's width and height to draw at the current level.
+    double renderScale() const { return scaleOf(level_); }
+    static double scaleOf(int level);
     // Updates the model with a frame rendered at level(), then chooses the next level.
     void record(const FrameMeasurement& frame);
     // Predicted milliseconds of a frame at `level` like the last one.
@@ -60,7 +74,7 @@ private:
 
     double budget_ = 0;
     int level_ = 0;
-    double fixedMilliseconds_ = -1;         // < 0: not measured yet
+    double fixedMilliseconds_ = -1;         // at full resolution; < 0: not measured yet
     double millisecondsPerPrimitive_ = -1;  // < 0: not measured yet
     double ratio_ = 0.6;                    // primitives(level + 1) / primitives(level)
     double primitives_ = 0;                 // of the last frame
