@@ -205,7 +205,15 @@ void FarFieldCanopy::draw(const Camera& camera, const glm::dmat4& projection, do
     // it only sets how fast the seen cover grows towards the horizon.
     program.setVec3("uCrown", glm::vec3(float(current_->crownWidth), float(0.5 * current_->tallest),
                                         float(CanopyProfile::kSightDepth)));
+    // Nearer than the fade start every canopy fragment would be discarded by the
+    // hand-over (fade 0); clipping the rings there spares the rasteriser and the fragment
+    // shader the fill disk overhead (at canopy height, so it passes the depth test over
+    // the sky and the near ground) and the near parts of the finest rings. The clip is
+    // conservative (terrain.vert), so the image is the same.
+    program.setFloat("uClipInside", float(frame_.fadeStart));
+    glEnable(GL_CLIP_DISTANCE0);
     rings_->draw(camera, projection, frame_.levels, ocean);
+    glDisable(GL_CLIP_DISTANCE0);
 }
 
 }  // namespace sylva::render

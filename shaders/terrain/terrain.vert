@@ -23,6 +23,11 @@ uniform mat4 uProjection;       // reversed-Z, infinite far plane
 uniform bool uOcean;            // clamp heights below 0 m to the sea surface
 uniform float uRingStep;        // 2^(1/ringsPerLevel) - 1: a ring's step over its view angle
 uniform float uBearingStep;     // 2 pi / columns (radians)
+// Metres from the camera inside which the geometry is clipped, for the far-field canopy
+// (FarFieldCanopy::draw enables GL_CLIP_DISTANCE0; the terrain leaves it disabled, so
+// this is ignored there). The clip distance is interpolated linearly across a triangle
+// while the distance is convex, so a clipped point is nearer than this: conservative.
+uniform float uClipInside;
 
 layout(location = 0) out vec4 vDetailCoordinate;  // xy: detail level i, zw: level i - 1
 layout(location = 1) out float vBlend;
@@ -73,5 +78,6 @@ void main() {
     vBlend = blend;
     vUp = uMeridianToView * surfaceUp(offset);
     vDistance = length(position);
+    gl_ClipDistance[0] = vDistance - uClipInside;
     gl_Position = uProjection * vec4(position, 1.0);
 }

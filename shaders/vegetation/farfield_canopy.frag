@@ -95,13 +95,18 @@ float crownSelfShadowing(vec3 normal, vec3 tangent, vec3 bitangent) {
 }
 
 void main() {
+    // The hand-over first: it needs no texture, and inside the band it gives most pixels
+    // to the trees (nearer than the fade start the geometry is clipped, see terrain.vert).
+    if (!farFieldCanopyPixel()) {
+        discard;
+    }
     int coarser = max(uTextureLevel - 1, 0);
     vec4 fine = texture(uColor, vec3(vDetailCoordinate.xy, float(uTextureLevel)));
     vec4 coarse = texture(uColor, vec3(vDetailCoordinate.zw, float(coarser)));
     vec4 cover = mix(fine, coarse, vBlend);
     // The minimum cover is a dithered threshold (mean uMinimumCover), so the forest's
     // thin edge fades out instead of ending on a contour.
-    if (cover.a < uMinimumCover * 2.0 * pixelNoise() || !farFieldCanopyPixel()) {
+    if (cover.a < uMinimumCover * 2.0 * pixelNoise()) {
         discard;
     }
     vec3 fineNormal = texture(uNormals, vec3(vDetailCoordinate.xy, float(uTextureLevel))).xyz;

@@ -380,7 +380,7 @@ end
 begin "check demo project -> exit 0"
 run check "$REPO/projects/demo/demo.sylva"
 expect_rc 0
-expect_stdout "demo.sylva: ok (7 sources, 3 cameras, 1 views)"
+expect_stdout "demo.sylva: ok (7 sources, 4 cameras, 1 views)"
 end
 
 begin "check broken project -> exit 1"

@@ -207,6 +207,11 @@ TEST_F(DemoGolden, AircraftDusk) {
 TEST_F(DemoGolden, Ground) {
     checkGolden("ground");
 }
+// Over the woods: drawn trees to the instance distance, the far-field canopy on the
+// ridges beyond it (issue 21: forest silhouettes to the horizon).
+TEST_F(DemoGolden, Lookout) {
+    checkGolden("lookout");
+}
 
 TEST_F(DemoGolden, NoHolesFromSpace) {
     checkNoHoles("space");
