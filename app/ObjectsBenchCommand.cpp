@@ -1,7 +1,7 @@
 // `sylva bench objects [--json] [--size WxH] [--buildings N] [--turbines N] [--frames N]
-// [--gl B]`: the proposal's benchmark (bench/ObjectsBenchmark.h): a generated city of
-// extruded footprints and a wind farm of instanced turbines on the terrain benchmark's
-// flight, against the terrain alone.
+// [--cache-mb N] [--gl B]`: the proposal's benchmark (bench/ObjectsBenchmark.h): a generated city
+// of extruded footprints and a wind farm of instanced turbines on the terrain benchmark's flight,
+// against the terrain alone.
 #include <cstdio>
 
 #include "CommandLine.h"
@@ -14,7 +14,8 @@ namespace sylva::app {
 
 int runObjectsBench(const std::vector<std::string>& arguments) {
     const ParsedCommandLine command = parseCommandLine(
-        arguments, {{"json", false}, {"size"}, {"buildings"}, {"turbines"}, {"frames"}, {"gl"}});
+        arguments,
+        {{"json", false}, {"size"}, {"buildings"}, {"turbines"}, {"frames"}, {"cache-mb"}, {"gl"}});
     if (!command.error.empty() || !command.positional.empty()) {
         reportError(command.error.empty() ? "bench objects takes no arguments" : command.error);
         return 2;
@@ -34,7 +35,8 @@ int runObjectsBench(const std::vector<std::string>& arguments) {
     };
     for (const Count& count : {Count{"buildings", 1, 1000000, &options.buildings},
                                Count{"turbines", 1, 100000, &options.turbines},
-                               Count{"frames", 1, 1000, &options.framesPerSegment}}) {
+                               Count{"frames", 1, 1000, &options.framesPerSegment},
+                               Count{"cache-mb", 1, 1 << 20, &options.cacheMegabytes}}) {
         const Result<std::optional<int>> value =
             wholeNumberOption(command, count.name, count.minimum, count.maximum,
                               "expects a whole number within " + std::to_string(count.minimum) +

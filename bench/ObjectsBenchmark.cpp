@@ -9,6 +9,7 @@
 #include <fstream>
 #include <numbers>
 #include <random>
+#include <string>
 
 #include <unistd.h>
 
@@ -151,18 +152,26 @@ std::filesystem::path writeTurbineModel(const std::filesystem::path& folder) {
     return path;
 }
 
-// Frame seconds per scene (terrain alone, with the city, with the farm). Every scene
+// One timed frame of one scene: its wall time and what it cost the tile caches.
+struct FrameSample {
+    double seconds = 0;
+    std::size_t meshTilesBuilt = 0;  // MeshRenderer tiles built (not resident before)
+    std::size_t tilesProduced = 0;   // Scheduler misses during the frame
+    std::size_t tilesEvicted = 0;    // Scheduler evictions during the frame
+};
+
+// Frame samples per scene (terrain alone, with the city, with the farm). Every scene
 // flies the whole flight once untimed (tiles, meshes, shader variants, shadow caches),
 // then the timed frames interleave the scenes camera by camera, the first scene of each
 // camera rotating: the scene drawn first at a camera pays the clipmap's move to it, and
 // a change in the machine's load during the run falls on all three alike. (Timing the
 // scenes one after another made the terrain alone, flown first, the slowest: ratios
 // below 1.)
-Result<std::vector<std::vector<double>>> fly(SceneRenderer& renderer,
-                                             const std::vector<TerrainLayers>& scenes,
-                                             Scheduler& scheduler,
-                                             const std::vector<Camera>& frames,
-                                             const RenderSettings& settings) {
+Result<std::vector<std::vector<FrameSample>>> fly(SceneRenderer& renderer,
+                                                  const std::vector<TerrainLayers>& scenes,
+                                                  Scheduler& scheduler,
+                                                  const std::vector<Camera>& frames,
+                                                  const RenderSettings& settings) {
     for (const TerrainLayers& layers : scenes) {
         for (const Camera& camera : frames) {
             if (Result<Image> image = renderer.render(layers, scheduler, camera, settings);
@@ -171,21 +180,31 @@ Result<std::vector<std::vector<double>>> fly(SceneRenderer& renderer,
             }
         }
     }
-    std::vector<std::vector<double>> seconds(scenes.size());
+    std::vector<std::vector<FrameSample>> samples(scenes.size());
     for (std::size_t frame = 0; frame < frames.size(); ++frame) {
         for (std::size_t k = 0; k < scenes.size(); ++k) {
             const std::size_t scene = (frame + k) % scenes.size();
+            const SchedulerStatistics before = scheduler.totals();
             const auto start = std::chrono::steady_clock::now();
             Result<Image> image =
                 renderer.render(scenes[scene], scheduler, frames[frame], settings);
             if (!image) {
                 return image.error();
             }
-            seconds[scene].push_back(
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+            FrameSample sample;
+            sample.seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const SchedulerStatistics after = scheduler.totals();
+            sample.meshTilesBuilt = renderer.statistics().meshes.tilesBuilt;
+            sample.tilesProduced = after.misses - before.misses;
+            sample.tilesEvicted = after.evictions - before.evictions;
+            samples[scene].push_back(sample);
+            // As it happens, so a long run shows where it is.
+            std::fprintf(stderr, "objects: timed frame %zu scene %zu: %.0f ms\n", frame, scene,
+                         sample.seconds * 1e3);
         }
     }
-    return seconds;
+    return samples;
 }
 
 }  // namespace
@@ -204,6 +223,7 @@ Result<ObjectsBenchmarkResult> runObjectsBenchmark(const ShaderLibrary& library,
     const HypsometricSource colour("dem.colour", &elevation, &normals, HypsometricParameters{});
     SchedulerOptions schedulerOptions;
     schedulerOptions.format = TileFormat{256, 2};
+    schedulerOptions.budgetBytes = std::size_t(options.cacheMegabytes) << 20;
     Scheduler scheduler(schedulerOptions);
 
     FeatureSource footprints("city", writeCity(folder, options.buildings), {});
@@ -249,21 +269,40 @@ Result<ObjectsBenchmarkResult> runObjectsBenchmark(const ShaderLibrary& library,
         {&elevation, &colour, &normals, {}, {&buildings}},
         {&elevation, &colour, &normals, {}, {&turbines}},
     };
-    Result<std::vector<std::vector<double>>> flown =
+    Result<std::vector<std::vector<FrameSample>>> flown =
         fly(*renderer.value(), scenes, scheduler, frames, settings);
     if (!flown) {
         return flown.error();
     }
-    const std::vector<std::vector<double>>& seconds = flown.value();
+    const std::vector<std::vector<FrameSample>>& samples = flown.value();
+    static constexpr const char* kScenes[] = {"terrain", "city", "farm"};
     for (std::size_t frame = 0; frame < frames.size(); ++frame) {
-        // The frames behind the medians, for reading a surprising ratio.
-        std::fprintf(stderr, "objects: frame %zu: terrain %.0f ms, city %.0f ms, farm %.0f ms\n",
-                     frame, seconds[0][frame] * 1e3, seconds[1][frame] * 1e3,
-                     seconds[2][frame] * 1e3);
+        // The frames behind the medians, for reading a surprising ratio: per scene its
+        // time, mesh tiles built, tiles produced and evicted by the Scheduler.
+        std::string line = "objects: frame " + std::to_string(frame) + ":";
+        for (std::size_t scene = 0; scene < samples.size(); ++scene) {
+            const FrameSample& s = samples[scene][frame];
+            char text[160];
+            std::snprintf(text, sizeof text, "%s %s %.0f ms (meshes %zu, tiles +%zu -%zu)",
+                          scene == 0 ? "" : ",", kScenes[scene], s.seconds * 1e3, s.meshTilesBuilt,
+                          s.tilesProduced, s.tilesEvicted);
+            line += text;
+        }
+        std::fprintf(stderr, "%s\n", line.c_str());
     }
+    const SchedulerStatistics totals = scheduler.totals();
+    std::fprintf(stderr,
+                 "objects: cache budget %d MiB, peak %.0f MiB, now %.0f MiB in %zu tiles; "
+                 "%zu produced, %zu evicted\n",
+                 options.cacheMegabytes, double(scheduler.peakCachedBytes()) / (1 << 20),
+                 double(totals.bytes) / (1 << 20), totals.tiles, totals.misses, totals.evictions);
     std::vector<double> medians;
-    for (const std::vector<double>& scene : seconds) {
-        medians.push_back(median(scene));
+    for (const std::vector<FrameSample>& scene : samples) {
+        std::vector<double> seconds;
+        for (const FrameSample& sample : scene) {
+            seconds.push_back(sample.seconds);
+        }
+        medians.push_back(median(seconds));
     }
     std::filesystem::remove_all(folder);
     ObjectsBenchmarkResult result;

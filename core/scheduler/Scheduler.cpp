@@ -43,6 +43,8 @@ void lowerThreadPriority(int increment) {
 
 }  // namespace
 
+thread_local Scheduler::PinScope* Scheduler::pinScope_ = nullptr;
+
 Scheduler::Scheduler(SchedulerOptions options) : options_(std::move(options)) {
     int workers = options_.workers;
     if (workers <= 0) {
@@ -119,6 +121,12 @@ Result<TilePointer> Scheduler::tile(const Source& source, const TileKey& key) {
     SYLVA_CHECK_MESSAGE(key.valid(), "Scheduler::tile: invalid tile key");
     const TaskId id{source.contentHash(), key};
     std::unique_lock lock(mutex_);
+    // An input of a task running on this thread: pinned until that task ends (before it
+    // is produced, so inserting it never evicts it).
+    if (pinScope_ != nullptr && pinScope_->owner == this) {
+        pinScope_->inputs.push_back(id);
+        ++pins_[id];
+    }
     while (true) {
         SourceCache& cache = cacheFor(source);
         if (auto hit = cache.tiles.find(key); hit != cache.tiles.end()) {
@@ -160,6 +168,9 @@ Result<TilePointer> Scheduler::run(std::unique_lock<std::mutex>& lock, const Tas
 
     const double outerNested = nestedSeconds;
     nestedSeconds = 0.0;
+    PinScope scope{this, {}};
+    PinScope* const outerScope = pinScope_;
+    pinScope_ = &scope;
     const auto start = Clock::now();
     DiskTileCache* disk = options_.diskCache.get();
     TilePointer stored = disk != nullptr ? disk->load(id.hash, id.key, options_.format) : nullptr;
@@ -172,6 +183,7 @@ Result<TilePointer> Scheduler::run(std::unique_lock<std::mutex>& lock, const Tas
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
     const double own = std::max(0.0, elapsed - nestedSeconds);
     nestedSeconds = outerNested + elapsed;
+    pinScope_ = outerScope;
     if (produced) {
         SYLVA_CHECK(produced.value() != nullptr);
         SYLVA_CHECK(produced.value()->key() == id.key);
@@ -183,6 +195,7 @@ Result<TilePointer> Scheduler::run(std::unique_lock<std::mutex>& lock, const Tas
     lock.lock();
     tasks_.erase(id);
     ++finished_;
+    unpinLocked(scope.inputs);
     bool report = false;
     auto cache = caches_.find(id.hash);
     // A task of an invalidated (or dropped) hash may have read stale inputs: discard.
@@ -211,6 +224,20 @@ Result<TilePointer> Scheduler::run(std::unique_lock<std::mutex>& lock, const Tas
 void Scheduler::touchLocked(CachedTile& cached) {
     cached.lastUse = ++useClock_;
     cached.priority = inflation_ + cached.costPerMiB;
+    cached.round = postedRounds_;
+}
+
+void Scheduler::unpinLocked(const std::vector<TaskId>& inputs) {
+    for (const TaskId& input : inputs) {
+        auto pin = pins_.find(input);
+        SYLVA_CHECK(pin != pins_.end() && pin->second > 0);
+        if (--pin->second == 0) {
+            pins_.erase(pin);
+        }
+    }
+    if (!inputs.empty() && cachedBytes_ > options_.budgetBytes) {
+        pruneLocked();
+    }
 }
 
 void Scheduler::insertLocked(const TaskId& id, TilePointer tile, double seconds) {
@@ -242,7 +269,10 @@ void Scheduler::pruneLocked() {
     // Seed 001 Fig. 4.3a: keep the tiles of the current quad and the ring adjacent to
     // it; evict the farthest first. Among equally far ones the seed takes the least
     // recently used; here the cheapest to get again (GreedyDual-Size, see the header).
+    // Tiles of the current frame come after all others and go cheapest, then least
+    // recently used, first; pinned inputs of running tasks stay.
     struct Candidate {
+        bool current;  // used since the latest wanted list
         int distance;
         double priority;
         std::uint64_t lastUse;
@@ -252,13 +282,21 @@ void Scheduler::pruneLocked() {
     std::vector<Candidate> candidates;
     for (const auto& [hash, cache] : caches_) {
         for (const auto& [key, cached] : cache.tiles) {
-            const int distance = focus_ ? focusDistance(key, focus_->first, focus_->second) : 0;
-            candidates.push_back({distance, cached.priority, cached.lastUse, hash, key});
+            if (!pins_.empty() && pins_.count({hash, key}) != 0) {
+                continue;
+            }
+            const bool current = postedRounds_ > 0 && cached.round == postedRounds_;
+            const int distance =
+                focus_ && !current ? focusDistance(key, focus_->first, focus_->second) : 0;
+            candidates.push_back({current, distance, cached.priority, cached.lastUse, hash, key});
         }
     }
-    // Farthest first; among equally far ones the lowest GreedyDual-Size priority, then
-    // the least recently used.
+    // Earlier frames' tiles first, farthest first; then the lowest GreedyDual-Size
+    // priority, then the least recently used.
     std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+        if (a.current != b.current) {
+            return b.current;
+        }
         if (a.distance != b.distance) {
             return a.distance > b.distance;
         }

@@ -22,6 +22,7 @@ struct MeshGpuGeometry {
 struct MeshRenderer::ResidentTile {
     std::shared_ptr<const MeshTile> tile;
     std::unique_ptr<MeshGpuGeometry> geometry;  // null when the tile has no static triangles
+    bool shown = false;  // wanted by the last update (else kept for another scenario)
 };
 
 namespace {
@@ -185,12 +186,14 @@ Status MeshRenderer::update(const std::vector<const MeshSource*>& sources, TileP
                             const Camera& camera, const MeshSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
     statistics_.tilesBuilt = 0;
+    ++updates_;
     std::set<std::pair<std::uint64_t, TileKey>> wanted;
     for (const MeshSource* source : sources) {
         Result<GeographicBounds> bounds = source->bounds();
         if (!bounds) {
             return bounds.error();
         }
+        lastUpdate_[source->contentHash()] = updates_;
         for (const TileKey& key : keysNear(bounds.value(), camera.geodetic.latitude,
                                            camera.geodetic.longitude, settings.maximumDistance)) {
             const std::pair<std::uint64_t, TileKey> id{source->contentHash(), key};
@@ -211,7 +214,22 @@ Status MeshRenderer::update(const std::vector<const MeshSource*>& sources, TileP
             ++statistics_.tilesBuilt;
         }
     }
-    std::erase_if(tiles_, [&](const auto& entry) { return wanted.count(entry.first) == 0; });
+    // Sources of this update keep their wanted tiles only. Those of other scenarios keep
+    // the tiles of their last update while it is recent (not drawn): a comparison draws
+    // two scenarios a frame, and dropping one's tiles for the other rebuilt a whole city,
+    // with its ground samples, every frame.
+    std::erase_if(lastUpdate_,
+                  [&](const auto& entry) { return updates_ - entry.second > kKeptUpdates; });
+    std::erase_if(tiles_, [&](const auto& entry) {
+        const auto last = lastUpdate_.find(entry.first.first);
+        if (last == lastUpdate_.end()) {
+            return true;
+        }
+        return last->second == updates_ && wanted.count(entry.first) == 0;
+    });
+    for (auto& [id, resident] : tiles_) {
+        resident->shown = wanted.count(id) != 0;
+    }
     std::erase_if(models_, [](const auto& entry) { return entry.second.model.use_count() == 1; });
     statistics_.residentTiles = tiles_.size();
     statistics_.buildSeconds =
@@ -377,7 +395,7 @@ void MeshRenderer::drawWithDepthTest(const MeshDrawView& view, bool depthOnly,
     instanceScratch_.clear();
     for (const auto& [id, resident] : tiles_) {
         const MeshTile& tile = *resident->tile;
-        if (!resident->geometry ||
+        if (!resident->shown || !resident->geometry ||
             !sphereVisible(view.projection, view.rotation * (tile.boundsCenter - view.eye),
                            tile.boundsRadius)) {
             continue;
@@ -403,7 +421,7 @@ void MeshRenderer::drawWithDepthTest(const MeshDrawView& view, bool depthOnly,
     }
     // Placed models: instanced per part.
     for (const auto& [id, resident] : tiles_) {
-        if (resident->tile->model && !resident->tile->placements.empty() &&
+        if (resident->shown && resident->tile->model && !resident->tile->placements.empty() &&
             sphereVisible(view.projection,
                           view.rotation * (resident->tile->boundsCenter - view.eye),
                           resident->tile->boundsRadius)) {

@@ -144,6 +144,43 @@ TEST_F(ObjectsRender, BuildingTopIsAtTerrainPlusHeight) {
     EXPECT_NEAR(heightAt(camera, depth, 2, 2), kGround, 0.05);
 }
 
+TEST_F(ObjectsRender, AnotherScenariosTilesStayResidentButAreNotDrawn) {
+    // Issue 17: drawing one scenario dropped the other's mesh tiles, so alternating
+    // scenarios (a comparison, the objects benchmark) rebuilt every tile each frame.
+    const auto file =
+        writeGeoJson("scenario.geojson",
+                     R"({"type":"Feature","id":1,"properties":{"h":12.0},"geometry":{"type":)"
+                     R"("Polygon","coordinates":)" +
+                         rectangle(15, 15) + "}}");
+    const auto other = writeGeoJson(
+        "other.geojson", R"({"type":"Feature","id":2,"properties":{"h":30.0},"geometry":{"type":)"
+                         R"("Polygon","coordinates":)" +
+                             rectangle(10, 10, 60, 0) + "}}");
+    FeatureSource features("footprints", file, {});
+    FeatureSource otherFeatures("other", other, {});
+    BuildingsParameters p;
+    p.heightAttribute = "h";
+    const BuildingsSource today("houses", &features, &ground_, p);
+    const BuildingsSource proposed("estate", &otherFeatures, &ground_, p);
+    const Camera camera = downwards(0, 0, kGround + 300.0, 30 * kDegree);
+    std::vector<float> depth = render({&today}, camera);
+    ASSERT_EQ(renderer_->statistics().meshes.tilesBuilt, 1u);
+    EXPECT_NEAR(heightAt(camera, depth, kSize / 2, kSize / 2), kGround + 12.0, 0.01);
+    // The other scenario: its building drawn, this one's not (the terrain is seen).
+    depth = render({&proposed}, camera);
+    EXPECT_EQ(renderer_->statistics().meshes.tilesBuilt, 1u);
+    EXPECT_EQ(renderer_->statistics().meshes.residentTiles, 2u);
+    EXPECT_NEAR(heightAt(camera, depth, kSize / 2, kSize / 2), kGround, 0.05);
+    const double east = 60.0 / (2 * 300.0 * std::tan(15 * kDegree));  // image widths
+    EXPECT_NEAR(heightAt(camera, depth, int(kSize * (0.5 + east)), kSize / 2), kGround + 30.0,
+                0.01);
+    // Back: nothing built again, the first building drawn, the other not.
+    depth = render({&today}, camera);
+    EXPECT_EQ(renderer_->statistics().meshes.tilesBuilt, 0u);
+    EXPECT_NEAR(heightAt(camera, depth, kSize / 2, kSize / 2), kGround + 12.0, 0.01);
+    EXPECT_NEAR(heightAt(camera, depth, int(kSize * (0.5 + east)), kSize / 2), kGround, 0.05);
+}
+
 TEST_F(ObjectsRender, TurbineHubIsAtHubHeight) {
     const auto file =
         writeGeoJson("turbine.geojson",

@@ -580,6 +580,106 @@ TEST(Scheduler, PruningKeepsTheRingAroundTheFocus) {
     lru.waitIdle();
 }
 
+TEST(Scheduler, AFrameReadingTilesFarFromTheFocusKeepsThemWhileOlderTilesGo) {
+    // Issue 17's thrash in small: a frame builds buildings whose ground tiles lie far from
+    // the focus (the clipmap's centre) and reads them in turn, as GroundSampler does,
+    // with the cache full of the previous frame's tiles near the focus. Pruning by
+    // distance first evicted each ground tile right after it was produced (it was the
+    // farthest), so every read produced it again.
+    TestSource terrain("terrain", 1);
+    TestSource ground("ground", 2);
+    constexpr int kNear = 8;
+    Scheduler scheduler(options(1, kNear * kTileBytes));
+    // Level 6: 128 x 64 tiles; focus in tile (40.5, 20.5).
+    const double longitude = (40.5 / 128) * 2 * std::numbers::pi - std::numbers::pi;
+    const double latitude = std::numbers::pi / 2 - 20.5 / 64 * std::numbers::pi;
+    scheduler.setFocus(latitude, longitude);
+    scheduler.setWanted({});  // frame 1: the clipmap's tiles around the focus
+    for (int x = 0; x < kNear; ++x) {
+        ASSERT_TRUE(scheduler.tile(terrain, TileKey{6, 0, 38 + x % 4, 19 + x / 4}));
+    }
+    ASSERT_EQ(scheduler.totals().evictions, 0u);
+    scheduler.setWanted({});  // frame 2: four ground tiles 60 columns away, read in turn
+    for (int pass = 0; pass < 10; ++pass) {
+        for (int x = 0; x < 4; ++x) {
+            Result<TilePointer> tile = scheduler.tile(ground, TileKey{6, 0, 100 + x, 20});
+            ASSERT_TRUE(tile);
+            EXPECT_EQ(tile.value()->at(0, 0, 0), float(2 + 100 + x));
+        }
+    }
+    EXPECT_EQ(ground.calls.load(), 4);
+    EXPECT_LE(scheduler.totals().bytes, kNear * kTileBytes);
+    // The older frame's tiles went instead (four of them, farthest first).
+    EXPECT_EQ(scheduler.totals().evictions, 4u);
+    // The next frame: the ground tiles are now an earlier frame's, farthest from the
+    // focus, and go first.
+    scheduler.setWanted({});
+    ASSERT_TRUE(scheduler.tile(terrain, TileKey{6, 0, 40, 21}));
+    EXPECT_EQ(scheduler.tryGet(ground, TileKey{6, 0, 100, 20}, 0).state, TileLookup::State::Ready);
+    EXPECT_EQ(scheduler.tryGet(ground, TileKey{6, 0, 103, 20}, 0).state,
+              TileLookup::State::Pending);
+    scheduler.cancelAll();
+    scheduler.waitIdle();
+}
+
+// Reads tile x = 0 of its input, then `others` more tiles of it, then x = 0 again (as a
+// GroundSampler does when a building straddles two ground tiles).
+class RereadingSource final : public Source {
+public:
+    RereadingSource(const Source* input, int others)
+        : Source("rereading", "test", PortType::Elevation, 1), others_(others) {
+        addInput(input);
+        setParameterHash(std::uint64_t(others));
+    }
+    Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override {
+        float sum = 0;
+        for (int i = 0; i <= others_ + 1; ++i) {
+            const int x = i <= others_ ? i : 0;
+            Result<TilePointer> in = provider.tile(*inputs()[0], TileKey{key.level, 0, x, key.y});
+            if (!in) {
+                return in.error();
+            }
+            sum += in.value()->at(0, 0, 0);
+        }
+        auto tile =
+            std::make_shared<ImageTile>(key, provider.format().size, provider.format().border, 1);
+        for (float& t : tile->texels()) {
+            t = sum;
+        }
+        return TilePointer(std::move(tile));
+    }
+
+private:
+    int others_;
+};
+
+TEST(Scheduler, InputsOfARunningTaskAreNotEvictedBeforeItEnds) {
+    // The task reads 9 distinct input tiles with room for 4: least recently used pruning
+    // evicted tile 0 before the task read it again, so it was produced twice.
+    TestSource base("base", 1);
+    const RereadingSource reader(&base, 8);
+    const std::size_t budget = 4 * kTileBytes;
+    Scheduler scheduler(options(1, budget));
+    Result<TilePointer> tile = scheduler.tile(reader, TileKey{5, 0, 3, 7});
+    ASSERT_TRUE(tile);
+    float expected = 0;
+    for (int i = 0; i <= 9; ++i) {
+        expected += float(1 + (i <= 8 ? i : 0));
+    }
+    EXPECT_EQ(tile.value()->at(0, 0, 0), expected);
+    EXPECT_EQ(base.calls.load(), 9);
+    // Pinned, the inputs exceeded the budget while the task ran; released, they went.
+    EXPECT_GE(scheduler.peakCachedBytes(), 9 * kTileBytes);
+    EXPECT_LE(scheduler.totals().bytes, budget);
+    // Pins are per task: the same reads from outside a task are not pinned.
+    const std::size_t evictionsBefore = scheduler.totals().evictions;
+    for (int x = 0; x <= 8; ++x) {
+        ASSERT_TRUE(scheduler.tile(base, TileKey{5, 0, x, 7}));
+    }
+    EXPECT_LE(scheduler.totals().bytes, budget);
+    EXPECT_GT(scheduler.totals().evictions, evictionsBefore);
+}
+
 TEST(Scheduler, AnEditOverBudgetRecomputesTheEditedBranchNotTheEvictedExpensiveTiles) {
     // The turnaround bench's warm edit in small (issue 22: edit_ratio 0.155 -> 0.56):
     // one frame's tiles exceed the budget; `saturation` of the adjust branch changes.

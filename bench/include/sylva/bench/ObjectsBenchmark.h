@@ -25,7 +25,8 @@ struct ObjectsBenchmarkOptions {
     int height = 720;
     int buildings = 100000;
     int turbines = 1000;
-    int framesPerSegment = 4;  // frames between successive altitudes of the flight
+    int framesPerSegment = 4;   // frames between successive altitudes of the flight
+    int cacheMegabytes = 1024;  // the Scheduler's tile budget (SchedulerOptions::budgetBytes)
 };
 
 struct ObjectsBenchmarkResult {

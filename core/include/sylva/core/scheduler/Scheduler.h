@@ -13,6 +13,20 @@
 // a constant) are evicted before expensive ones (fractal noise, a filtered mask) that
 // an edit or the next image would otherwise compute again; with equal costs it is LRU.
 //
+// What a frame uses goes last, what a task reads is pinned. A frame is the time from
+// one wanted list (setWanted/cancelAll) to the next. Tiles used (read, produced) since
+// the latest list are evicted only when no older tile is left, and then cheapest and
+// least recently used first, not by distance: the distance rule assumes clipmap tiles
+// around the focus, but a frame also reads tiles away from it (the ground under a city's
+// buildings, at level 16, kilometres from the camera), which the rule made the first
+// victims right after they were produced, so a building tile sampling them produced the
+// same tiles again and again (issue 17: minutes a frame). A scheduler that never gets a
+// wanted list (tools reading synchronously) has no frames: distance first, as above.
+// Inputs a running task has read through tile() are not evicted until the task ends
+// (the cache may exceed the budget by them meanwhile, and is pruned when they are
+// released), so a source that reads an input again (GroundSampler keeps one tile) never
+// makes the scheduler produce it twice within one task.
+//
 // Threads and OS priority: the manager runs one nice step below the creating thread,
 // workers `workerNiceIncrement` steps below it (Linux: setpriority(PRIO_PROCESS, tid)
 // on each thread's own id, which only lowers priority and needs no privilege), so the
@@ -180,8 +194,9 @@ private:
     struct CachedTile {
         TilePointer tile;
         std::uint64_t lastUse = 0;
-        double costPerMiB = 0;  // GreedyDual-Size: produce seconds per MiB, rounded
-        double priority = 0;    // inflation at the last use + costPerMiB
+        double costPerMiB = 0;    // GreedyDual-Size: produce seconds per MiB, rounded
+        double priority = 0;      // inflation at the last use + costPerMiB
+        std::uint64_t round = 0;  // wanted lists posted before the last use (its frame)
     };
     // One cache per source content hash (seed 001 §4.4.3).
     struct SourceCache {
@@ -191,6 +206,12 @@ private:
         std::vector<std::uint64_t> inputs;  // content hashes of the source's inputs
         std::uint64_t generation = 0;       // bumped by invalidation
     };
+    // The inputs a task running on this thread has read so far (pinned in pins_).
+    struct PinScope {
+        const Scheduler* owner = nullptr;
+        std::vector<TaskId> inputs;
+    };
+    static thread_local PinScope* pinScope_;  // the innermost task on this thread, or null
     struct Message {
         enum class Kind { Request, Cancel, SetWanted, CancelAll } kind;
         std::vector<TileRequest> requests;  // Request (one), SetWanted (all)
@@ -209,6 +230,8 @@ private:
     void insertLocked(const TaskId& id, TilePointer tile, double seconds);
     void touchLocked(CachedTile& cached);  // a use: recency and GreedyDual-Size priority
     void pruneLocked();
+    // Releases the pins a finished task took on its inputs; prunes if over budget.
+    void unpinLocked(const std::vector<TaskId>& inputs);
     void dropHashLocked(std::uint64_t hash);
     void postLocked(Message message);
 
@@ -223,6 +246,8 @@ private:
     std::set<std::tuple<int, std::uint64_t, TaskId>> queue_;  // (priority, sequence, id)
     std::unordered_map<TaskId, Task, TaskIdHash> tasks_;
     std::unordered_map<std::uint64_t, SourceCache> caches_;
+    // Tiles pinned as inputs of running tasks: the number of tasks holding each.
+    std::unordered_map<TaskId, int, TaskIdHash> pins_;
     std::uint64_t sequence_ = 0;
     std::uint64_t wantedRound_ = 0;   // setWanted/cancelAll lists processed by the manager
     std::uint64_t postedRounds_ = 0;  // setWanted/cancelAll lists posted (≥ wantedRound_)

@@ -5,11 +5,14 @@
 //
 // Streaming: update() keeps the tiles (MeshSource::kTileLevel) within
 // MeshSettings::maximumDistance of the camera resident, building missing ones through the
-// provider (the sources' elevation) and dropping the rest. Models are uploaded once per
-// MeshModel and drawn instanced: one draw per model part, level of detail and tile. Level
-// of detail: each placement draws each part at the coarsest simplified level (ModelPart::
-// levels, OpenMesh's quadric decimation) whose geometric error, scaled by the placement,
-// projects below half a pixel at its distance (full detail for views without a pixel
+// provider (the sources' elevation) and dropping the rest. Tiles of sources not in this
+// update (another scenario's) stay resident, undrawn, as their last update left them
+// until kKeptUpdates updates pass without them: scenario comparisons and benchmarks draw
+// several scenarios in turn, and rebuilding a city at each switch cost minutes a frame. Models are
+// uploaded once per MeshModel and drawn instanced: one draw per model part, level of detail and
+// tile. Level of detail: each placement draws each part at the coarsest simplified level
+// (ModelPart:: levels, OpenMesh's quadric decimation) whose geometric error, scaled by the
+// placement, projects below half a pixel at its distance (full detail for views without a pixel
 // angle, such as the shadow maps).
 //
 // Precision: every tile and placement is transformed relative to the eye in double on the
@@ -81,8 +84,8 @@ public:
     Status update(const std::vector<const MeshSource*>& sources, TileProvider& provider,
                   const Camera& camera, const MeshSettings& settings);
 
-    // Draws the resident tiles with the current framebuffer, depth test and viewport;
-    // sets and restores its own depth state (GREATER, writes on).
+    // Draws the tiles of the last update's sources with the current framebuffer, depth test and
+    // viewport; sets and restores its own depth state (GREATER, writes on).
     void draw(const MeshDrawView& view, bool depthOnly);
     // Depth of the resident tiles into one shadow cascade (ShadowCaster.h: the sun's
     // orthographic view, depth test LESS); skips the terrain-only cascade.
@@ -104,6 +107,11 @@ private:
     GlBuffer instanceBuffer_;
     std::size_t instanceCapacity_ = 0;
     std::vector<float> instanceScratch_;
+    // Updates that may pass without a source before its tiles are dropped.
+    static constexpr std::uint64_t kKeptUpdates = 8;
+    std::uint64_t updates_ = 0;
+    // Per source content hash, the update that last listed it.
+    std::map<std::uint64_t, std::uint64_t> lastUpdate_;
     // Resident tiles by (source content hash, key).
     std::map<std::pair<std::uint64_t, TileKey>, std::unique_ptr<ResidentTile>> tiles_;
     // Uploaded models; the shared pointer keeps the address from being reused.
