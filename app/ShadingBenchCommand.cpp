@@ -4,9 +4,11 @@
 // aa4_frame_ratio), the atmosphere (bench/AtmosphereBenchmark.h: atmosphere_ms_median,
 // atmosphere_speedup) and sun shadows on the terrain flight and the vegetation forest, with
 // screen-space ambient occlusion on the same frames (bench/ShadingBenchmark.h: shadow_frame_ratio,
-// ssao_frame_ratio). `--only` takes a comma-separated subset of antialiasing,atmosphere,shadows.
-// Prints
-// {"suite":"shading","metrics":{...}} with --json, else one "shading.KEY = VALUE" line each.
+// ssao_frame_ratio), and with a moving camera (`--moving-frames` per stretch, 0: none;
+// `--shadow-margin` overrides ShadowSettings::recentreMargin, 0 for texel snapping alone:
+// shadow_frame_ratio_moving). `--only` takes a comma-separated subset of
+// antialiasing,atmosphere,shadows. Prints {"suite":"shading","metrics":{...}} with --json,
+// else one "shading.KEY = VALUE" line each.
 #include <cstdio>
 #include <set>
 #include <sstream>
