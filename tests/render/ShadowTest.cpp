@@ -1,7 +1,9 @@
 // Sun shadows (issue 16, seed 001 §7.1) against independent references: the cascades'
 // texel snapping (a 1 cm camera move keeps the light-space texel grid), the length of a
 // pole's shadow on flat ground against h / tan(e), the shadowed image under a 1 cm camera
-// move (no shimmering), and goldens of shadowed hills at three sun elevations.
+// move (no shimmering), the cascade boxes and the depth cache under small camera steps
+// (a cascade is drawn again only when its box moves), and goldens of shadowed hills at
+// three sun elevations.
 #include <gtest/gtest.h>
 
 #include <glad/gl.h>
