@@ -1,11 +1,14 @@
 // `sylva bench shading [--json] [--only PARTS] [--size WxH] [--frames N] [--dem N] [--trees N]
-// [--leaves N] [--gl B]`: the shading suite of issue 16, one part after the other in one GL
-// context: anti-aliasing (bench/AntiAliasingBenchmark.h: aa4_frame_ratio), the atmosphere
-// (bench/AtmosphereBenchmark.h: atmosphere_ms_median, atmosphere_speedup) and sun shadows
-// on the terrain flight and the vegetation forest, with screen-space ambient occlusion on
-// the same frames (bench/ShadingBenchmark.h: shadow_frame_ratio, ssao_frame_ratio). `--only` takes
-// a comma-separated subset of antialiasing,atmosphere,shadows. Prints
-// {"suite":"shading","metrics":{...}} with --json, else one "shading.KEY = VALUE" line each.
+// [--leaves N] [--moving-frames N] [--shadow-margin F] [--gl B]`: the shading suite of issue 16,
+// one part after the other in one GL context: anti-aliasing (bench/AntiAliasingBenchmark.h:
+// aa4_frame_ratio), the atmosphere (bench/AtmosphereBenchmark.h: atmosphere_ms_median,
+// atmosphere_speedup) and sun shadows on the terrain flight and the vegetation forest, with
+// screen-space ambient occlusion on the same frames (bench/ShadingBenchmark.h: shadow_frame_ratio,
+// ssao_frame_ratio), and with a moving camera (`--moving-frames` per stretch, 0: none;
+// `--shadow-margin` overrides ShadowSettings::recentreMargin, 0 for texel snapping alone:
+// shadow_frame_ratio_moving). `--only` takes a comma-separated subset of
+// antialiasing,atmosphere,shadows. Prints {"suite":"shading","metrics":{...}} with --json,
+// else one "shading.KEY = VALUE" line each.
 #include <cstdio>
 #include <set>
 #include <sstream>
@@ -72,8 +75,19 @@ bool readShadingOptions(const ParsedCommandLine& command, ShadingOptions& option
     if (!integer("frames", 1, 1000, frames) ||
         !integer("dem", 16, 8192, options.shadows.demSamples) ||
         !integer("trees", 1, 10000000, options.shadows.trees) ||
-        !integer("leaves", 50, 100000, options.shadows.leaves)) {
+        !integer("leaves", 50, 100000, options.shadows.leaves) ||
+        !integer("moving-frames", 0, 1000, options.shadows.movingFrames)) {
         return false;
+    }
+    if (std::optional<std::string> margin = command.get("shadow-margin")) {
+        double value = -1.0;
+        char rest = 0;
+        if (std::sscanf(margin->c_str(), "%lf%c", &value, &rest) != 1 || !(value >= 0.0) ||
+            value > 1.0) {
+            reportError("--shadow-margin expects a number within 0..1");
+            return false;
+        }
+        options.shadows.shadowMargin = value;
     }
     if (frames > 0) {
         options.antiAliasing.framesPerSegment = options.atmosphere.framesPerSegment = frames;
@@ -115,9 +129,16 @@ Status runShadingParts(const ShadingOptions& options, bench::MetricList& metrics
 }  // namespace
 
 int runShadingBench(const std::vector<std::string>& arguments) {
-    const ParsedCommandLine command = parseCommandLine(
-        arguments,
-        {{"json", false}, {"only"}, {"size"}, {"frames"}, {"dem"}, {"trees"}, {"leaves"}, {"gl"}});
+    const ParsedCommandLine command = parseCommandLine(arguments, {{"json", false},
+                                                                   {"only"},
+                                                                   {"size"},
+                                                                   {"frames"},
+                                                                   {"dem"},
+                                                                   {"trees"},
+                                                                   {"leaves"},
+                                                                   {"moving-frames"},
+                                                                   {"shadow-margin"},
+                                                                   {"gl"}});
     if (!command.error.empty() || !command.positional.empty()) {
         reportError(command.error.empty() ? "bench shading takes no arguments" : command.error);
         return 2;

@@ -11,6 +11,17 @@
 // ratios of medians, shadows + SSAO / shadows), `ssao_frame_ratio_terrain`,
 // `ssao_frame_ratio_forest`, `ssao_ms_median_terrain`, `ssao_ms_median_forest` (the pass
 // and its blur alone).
+//
+// Those renders repeat each camera after its warm-up, so the shadow cache always hits
+// (a still camera). The moving camera: stretches of `movingFrames` consecutive cameras a
+// small step apart (the flight continued level at 1 km, 3 m per frame, and at 50 m,
+// 0.5 m per frame; the forest path walked in from its edge at 10 cm per frame and the
+// turn inside at 1° per frame), warmed up once along the stretch, then timed in order with
+// and without shadows with no warm-up at a frame's own camera: `shadow_frame_ratio_moving`
+// (the larger of the scenes' ratios of medians), `shadow_frame_ratio_moving_terrain`,
+// `_forest`, `shadow_frame_ratio_moving_mean` (ratios of means, which see the frames that
+// redraw a cascade), `shadow_ms_median_moving_*`, `shadow_ms_max_moving_*`,
+// `shadow_redrawn_cascades_moving_*` (the fraction of cascades drawn rather than copied).
 #pragma once
 
 #include <map>

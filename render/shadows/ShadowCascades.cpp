@@ -20,30 +20,44 @@ void sliceSphere(double near, double far, double k, double& center, double& radi
 }
 
 ShadowCascade makeCascade(const Camera& camera, const glm::dmat3& light, double near, double far,
-                          double k, int resolution) {
+                          double k, const ShadowSettings& settings) {
     ShadowCascade cascade;
     cascade.nearDistance = near;
     cascade.farDistance = far;
     double center = 0, sphereRadius = 0;
     sliceSphere(near, far, k, center, sphereRadius);
-    // One texel of margin on either side: snapping moves the box by up to half a texel.
-    const double radius = sphereRadius * resolution / (resolution - 2.0);
+    // The margin, plus one texel on either side: snapping to whole texels alone moves the
+    // box by up to half a texel.
+    const int resolution = settings.resolution;
+    const double radius =
+        sphereRadius * (1.0 + settings.recentreMargin) * resolution / (resolution - 2.0);
     const double texel = 2.0 * radius / resolution;
     cascade.radius = radius;
+    cascade.sliceRadius = sphereRadius;
     cascade.texelSize = texel;
+    // Cells of whole texels no wider than twice the slack between box and sphere: the
+    // sphere's centre lies within half a cell of the snapped box centre on every axis,
+    // so the box holds the sphere (in depth too: the range reaches a radius either way).
+    const double slack = radius - sphereRadius;
+    const double cellTexels =
+        settings.recentreMargin > 0.0 ? std::max(1.0, std::floor(2.0 * slack / texel)) : 1.0;
+    const double cell = cellTexels * texel;
+    cascade.cellSize = cell;
     cascade.centerRelative = -center * camera.axes[2];  // the view axis is -z (back)
     // Snap in absolute light coordinates (double), then return to camera-relative ones:
-    // the texel grid is fixed to the Earth, not to the camera.
+    // the texel grid (and the cell grid, whole texels from the same origin) is fixed to
+    // the Earth, not to the camera.
     const glm::dvec3 cameraLight = light * camera.position;
     const glm::dvec3 absolute = light * (camera.position + cascade.centerRelative);
     // Depth too (whole texels along the sun): a map's depths are then those of the
     // Earth-fixed box, whatever the camera's position, so ShadowMaps can keep a cascade's
-    // terrain depth while the box does not move.
-    const glm::dvec3 snapped(std::floor(absolute.x / texel + 0.5) * texel,
-                             std::floor(absolute.y / texel + 0.5) * texel,
-                             std::floor(absolute.z / texel + 0.5) * texel);
+    // depth while the box does not move.
+    const glm::dvec3 snapped(std::floor(absolute.x / cell + 0.5) * cell,
+                             std::floor(absolute.y / cell + 0.5) * cell,
+                             std::floor(absolute.z / cell + 0.5) * cell);
     cascade.boxLight = snapped;
     const glm::dvec3 box = snapped - cameraLight;
+    cascade.boxRelative = glm::transpose(light) * box;
     const double depthNear = box.z + 2.0 * radius;  // towards the sun
     const double depthFar = box.z - radius;
     glm::dmat4 projection(0.0);
@@ -93,18 +107,17 @@ std::vector<ShadowCascade> ShadowCascades::fit(const Camera& camera, double aspe
     if (!settings.enabled) {
         return cascades;
     }
-    SYLVA_CHECK(settings.resolution >= 16 && aspect > 0);
+    SYLVA_CHECK(settings.resolution >= 16 && aspect > 0 && settings.recentreMargin >= 0.0);
     const double tangentY = std::tan(camera.verticalFov / 2);
     const double k = std::hypot(tangentY, tangentY * aspect);
     const glm::dmat3 light = lightRotation(sunDirection);
     const std::vector<double> distances = splits(settings);
     for (std::size_t i = 0; i + 1 < distances.size(); ++i) {
-        cascades.push_back(
-            makeCascade(camera, light, distances[i], distances[i + 1], k, settings.resolution));
+        cascades.push_back(makeCascade(camera, light, distances[i], distances[i + 1], k, settings));
     }
     if (settings.terrainDistance > settings.distance) {
         ShadowCascade terrain =
-            makeCascade(camera, light, 0.0, settings.terrainDistance, k, settings.resolution);
+            makeCascade(camera, light, 0.0, settings.terrainDistance, k, settings);
         terrain.terrainOnly = true;
         cascades.push_back(terrain);
     }

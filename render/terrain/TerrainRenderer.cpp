@@ -352,7 +352,7 @@ std::optional<LevelRange> TerrainRenderer::shadowLevels(const ShadowView& view) 
     // holds the cascade's box and its depth range towards the sun (two radii), and no
     // finer than the cascade's texels need (the fill disk closes the finest drawn level).
     constexpr double kRadius = 6371000.0;
-    const double reach = glm::length(cascade.centerRelative) + 3.0 * cascade.radius;
+    const double reach = glm::length(cascade.boxRelative) + 3.0 * cascade.radius;
     LevelRange levels = *lastLevels_;
     // Ring level i covers view angles pi 2^-(i+1) .. pi 2^-i around the nadir.
     const int coarsest = int(std::floor(std::log2(std::numbers::pi * kRadius / (2.0 * reach))));
@@ -380,13 +380,18 @@ std::optional<std::uint64_t> TerrainRenderer::shadowCacheKey(const ShadowView& v
     if (!levels) {
         return std::nullopt;
     }
-    const glm::dvec3 camera = view.lightRotation * view.camera->position;
-    const double texel = view.cascade->texelSize;
+    // What the depth in the cascade's Earth-fixed box (ShadowMaps adds the box and the sun)
+    // depends on: the levels drawn, the finest resident level they sample, the ocean and
+    // the height source. Not the camera, nor the clipmap's uploads: every level holds its
+    // source's tiles (Clipmap copies them unchanged), so a window that scrolls with the
+    // camera holds the same heights where it overlaps, and the rings (drawn around the
+    // camera) only triangulate the same heightfield a little differently, by less than the
+    // levels' own spacing, which is no finer than the cascade's texels (shadowLevels).
+    // A camera moving within the box's cell thus keeps the terrain's depth
+    // (docs/architecture.md, sun shadows; tested by ShadowTest.SmallCameraSteps*).
     ContentHash hash;
     hash.add(levels->coarsest).add(levels->finest).add(textureCeiling_).add(lastOcean_);
-    hash.add(heightTexture_.uploadedBytes()).add(sourceHashes_[0]);
-    hash.add(std::floor(camera.x / texel)).add(std::floor(camera.y / texel));
-    hash.add(std::floor(camera.z / texel));
+    hash.add(sourceHashes_[0]);
     return hash.value();
 }
 

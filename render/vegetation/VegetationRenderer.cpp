@@ -680,10 +680,9 @@ std::optional<std::uint64_t> VegetationRenderer::shadowCacheKey(const ShadowView
         return hash.value();  // drawShadow draws nothing
     }
     const VegetationSettings& settings = shadowSettings_;
-    const glm::dvec3 camera = view.lightRotation * view.camera->position;
-    const double texel = view.cascade->texelSize;
-    hash.add(std::floor(camera.x / texel)).add(std::floor(camera.y / texel));
-    hash.add(std::floor(camera.z / texel));
+    // Not the camera: the selection for the cascade is orthographic with a fixed error in
+    // cascade texels (drawShadow), so which levels cast where depends on the box (in
+    // ShadowMaps' key) and the batches, not on where the viewer stands in it.
     hash.add(int(settings.method)).add(settings.quality).add(settings.minimumPixels);
     hash.add(settings.transitionBand).add(settings.closeUpMesh).add(settings.shadowErrorTexels);
     hash.add(species_.size()).add(ellipsoidCount_).add(lineCount_);

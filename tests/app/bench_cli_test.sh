@@ -61,6 +61,7 @@ suites="dsl, vector, plants, analysis, views, terrain, tiles, plantlod, turnarou
 usage_error "unknown bench suite 'nope' (suites: $suites)" bench nope
 usage_error "bench needs one suite: $suites" bench
 usage_error "--size expects WIDTHxHEIGHT within 16..16384" bench shading --size 10x10
+usage_error "--shadow-margin expects a number within 0..1" bench shading --shadow-margin 2
 
 begin "bench --help lists every suite"
 run bench --help

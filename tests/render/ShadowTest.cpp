@@ -1,7 +1,9 @@
 // Sun shadows (issue 16, seed 001 §7.1) against independent references: the cascades'
 // texel snapping (a 1 cm camera move keeps the light-space texel grid), the length of a
 // pole's shadow on flat ground against h / tan(e), the shadowed image under a 1 cm camera
-// move (no shimmering), and goldens of shadowed hills at three sun elevations.
+// move (no shimmering), the cascade boxes and the depth cache under small camera steps
+// (a cascade is drawn again only when its box moves), and goldens of shadowed hills at
+// three sun elevations.
 #include <gtest/gtest.h>
 
 #include <glad/gl.h>
@@ -214,6 +216,76 @@ TEST(ShadowCascades, SplitsAndTexelSnapping) {
     }
 }
 
+// Hysteresis of the cascade boxes (ShadowSettings::recentreMargin): along a walk with a
+// slow turn (400 steps of 10 cm, 0.1° each), every box holds its slice's bounding sphere
+// on every light axis (the oracle: the sphere from the splits and the field of view), its
+// centre stays on the Earth-fixed texel grid, and it moves only when the sphere's centre
+// crosses a cell: at most once per cell of the centre's path on each axis, where the
+// former texel snapping (margin 0, checked too) moved the finest box at almost every step.
+TEST(ShadowCascades, BoxesHoldTheirSlicesAndStayUnderSmallSteps) {
+    Camera camera;
+    camera.geodetic = {47.3 * kDegree, 8.5 * kDegree, 421.7};
+    camera.verticalFov = 50 * kDegree;
+    const glm::dvec3 sun = glm::normalize(glm::dvec3(0.3, 0.5, 0.8));
+    const glm::dmat3 light = ShadowCascades::lightRotation(sun);
+    for (const double margin : {0.125, 0.0}) {
+        ShadowSettings settings;
+        settings.recentreMargin = margin;
+        std::vector<ShadowCascade> previous;
+        std::vector<int> moves(5, 0);
+        std::vector<double> path(5, 0.0);  // metres the sphere centre travelled per cascade
+        std::vector<glm::dvec3> lastCenter(5);
+        const int steps = 400;
+        for (int step = 0; step <= steps; ++step) {
+            Geodetic at = camera.geodetic;
+            at.latitude += step * 0.1 / Ellipsoid::kMeanRadius;
+            Camera c = camera;
+            c.geodetic = at;
+            c.position = Ellipsoid::toEcef(at);
+            c.axes = Camera::axesFromAngles(at, 0.3 + step * 0.1 * kDegree, -0.05, 0.0);
+            const std::vector<ShadowCascade> cascades =
+                ShadowCascades::fit(c, 16.0 / 9, sun, settings);
+            ASSERT_EQ(cascades.size(), 5u);
+            for (std::size_t i = 0; i < cascades.size(); ++i) {
+                const ShadowCascade& cascade = cascades[i];
+                const glm::dvec3 sphere = light * (c.position + cascade.centerRelative);
+                for (int axis = 0; axis < 3; ++axis) {
+                    EXPECT_LE(std::abs(sphere[axis] - cascade.boxLight[axis]) + cascade.sliceRadius,
+                              cascade.radius * (1.0 + 1e-9))
+                        << "cascade " << i << " axis " << axis << " step " << step;
+                    const double texels = cascade.boxLight[axis] / cascade.texelSize;
+                    EXPECT_NEAR(texels, std::round(texels), 1e-3) << i;
+                }
+                // The camera-relative box centre the casters use (TerrainRenderer's reach).
+                const glm::dvec3 box = light * (c.position + cascade.boxRelative);
+                EXPECT_LT(glm::length(box - cascade.boxLight), 1e-3) << i;
+                if (step > 0) {
+                    path[i] += glm::length(sphere - lastCenter[i]);
+                    moves[i] += cascade.boxLight != previous[i].boxLight ? 1 : 0;
+                }
+                lastCenter[i] = sphere;
+            }
+            previous = cascades;
+        }
+        for (std::size_t i = 0; i < moves.size(); ++i) {
+            const double cell = previous[i].cellSize;
+            std::printf(
+                "margin %.3f cascade %zu: cell %.2f m (%.0f texels), box moved %d times "
+                "over %.1f m\n",
+                margin, i, cell, cell / previous[i].texelSize, moves[i], path[i]);
+            if (margin > 0) {
+                EXPECT_GE(cell / previous[i].texelSize, 100.0) << i;
+                EXPECT_LE(moves[i], 3.0 * (path[i] / cell + 1.0)) << "cascade " << i;
+            }
+        }
+        if (margin > 0) {
+            EXPECT_LE(moves[0], 20) << "the finest box moved too often";
+        } else {
+            EXPECT_GT(moves[0], steps / 2) << "texel snapping alone follows the camera";
+        }
+    }
+}
+
 // A vertical pole of height h on flat ground at sun elevation e casts a shadow of length
 // h / tan(e): measured in an image rendered from straight above, from the pole's axis to
 // where the ground is half lit again, within 2 %.
@@ -391,13 +463,86 @@ TEST_F(ShadowTest, TerrainDepthIsCachedWhileTheCascadeBoxesStay) {
     }
     EXPECT_GT(shaded, copied.pixels.size() / 4 / 20) << "no shadows to compare";
     Camera moved = camera;
-    moved.position += camera.axes[0] * 5.0;  // five metres: more than the finest texels
+    moved.position += camera.axes[0] * 40.0;  // more than a cell of the finest cascade
     moved.geodetic = Ellipsoid::toGeodetic(moved.position);
     (void)render(layers, moved, settings);
     EXPECT_LT(renderer_->shadowMaps().cachedCascades(), cascades);
     settings.sunDirection = sunAt(camera.geodetic, 5 * kDegree, 250 * kDegree);
     (void)render(layers, camera, settings);
     EXPECT_EQ(renderer_->shadowMaps().cachedCascades(), 0);
+}
+
+// A moving camera keeps the cached depth (ShadowSettings::recentreMargin, the terrain's
+// cache key without the camera): along a flight of 24 steps of 50 cm over shadowed hills
+// at a 4° sun, a cascade is drawn again exactly when its Earth-fixed box moved (the boxes
+// from ShadowCascades::fit, a CPU oracle), i.e. a few times in all where keys with the
+// camera's texel redrew the four split cascades at every step. The last frame, whose depth
+// was drawn from earlier cameras in the same boxes, matches a fresh draw of the same
+// camera (another sun in between empties the cache) within the shimmer test's bound.
+TEST_F(ShadowTest, SmallCameraStepsReuseTheShadowDepth) {
+    Camera start;
+    start.geodetic = {46.21 * kDegree, 7.31 * kDegree, 0.0};
+    start.geodetic.height =
+        hillHeight(start.geodetic.latitude, start.geodetic.longitude, 250.0) + 300.0;
+    start.verticalFov = 60 * kDegree;
+    RenderSettings settings;
+    settings.width = 160;
+    settings.height = 90;
+    settings.ocean = false;
+    settings.atmosphere = false;
+    settings.sunVisibilityOutput = true;
+    const glm::dvec3 sun = sunAt(start.geodetic, 4 * kDegree, 250 * kDegree);
+    settings.sunDirection = sun;
+    const TerrainLayers layers{hills_, nullptr, hillNormals_, {}, {}};
+    const auto cameraAt = [&](int step) {
+        Camera c = start;
+        c.geodetic.latitude += step * 0.5 / Ellipsoid::kMeanRadius;
+        c.position = Ellipsoid::toEcef(c.geodetic);
+        c.axes =
+            Camera::axesFromAngles(c.geodetic, (30 + 0.2 * step) * kDegree, -20 * kDegree, 0.0);
+        return c;
+    };
+    (void)render(layers, cameraAt(0), settings);
+    std::vector<ShadowCascade> previous = renderer_->shadowMaps().cascades();
+    ASSERT_EQ(previous.size(), 5u);
+    int redrawn = 0, boxesMoved = 0;
+    const int steps = 24;
+    Image last;
+    for (int step = 1; step <= steps; ++step) {
+        const Camera c = cameraAt(step);
+        last = render(layers, c, settings);
+        const std::vector<ShadowCascade> expected =
+            ShadowCascades::fit(c, 16.0 / 9, sun, settings.shadows);
+        const std::vector<ShadowCascade>& drawn = renderer_->shadowMaps().cascades();
+        ASSERT_EQ(drawn.size(), expected.size());
+        int moved = 0;
+        for (std::size_t i = 0; i < drawn.size(); ++i) {
+            EXPECT_EQ(drawn[i].boxLight, expected[i].boxLight) << i;
+            moved += drawn[i].boxLight != previous[i].boxLight ? 1 : 0;
+        }
+        const int cached = renderer_->shadowMaps().cachedCascades();
+        EXPECT_EQ(cached, int(drawn.size()) - moved) << "step " << step;
+        redrawn += int(drawn.size()) - cached;
+        boxesMoved += moved;
+        previous = drawn;
+    }
+    std::printf("walk: %d of %d cascades drawn again, %d boxes moved\n", redrawn, steps * 5,
+                boxesMoved);
+    EXPECT_LE(redrawn, 8);
+    // The same camera drawn afresh: another sun empties the cache, then the first again.
+    settings.sunDirection = sunAt(start.geodetic, 30 * kDegree, 100 * kDegree);
+    (void)render(layers, cameraAt(steps), settings);
+    settings.sunDirection = sun;
+    const Image fresh = render(layers, cameraAt(steps), settings);
+    EXPECT_EQ(renderer_->shadowMaps().cachedCascades(), 0);
+    std::size_t shaded = 0;
+    for (std::size_t i = 1; i < fresh.pixels.size(); i += 4) {
+        shaded += fresh.pixels[i] < 128 ? 1 : 0;
+    }
+    EXPECT_GT(shaded, fresh.pixels.size() / 4 / 20) << "no shadows to compare";
+    const double difference = rmse(last, fresh);
+    std::printf("walk: cached depth against a fresh draw, sun visibility RMSE %.3f\n", difference);
+    EXPECT_LT(difference, 1.5);
 }
 
 // Terrain shadows of a real DEM (Olinda, 90 m, scripts/fetch-samples) seen from 4 km

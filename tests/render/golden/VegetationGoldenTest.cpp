@@ -268,6 +268,69 @@ TEST_F(VegetationGolden, PlantShadowsAreCachedWhileNothingChanges) {
     EXPECT_EQ(same.pixels, first.pixels);
 }
 
+// Walking towards the forest (16 steps of 30 cm, 0.2° of turn each) keeps the plants'
+// shadow depth: the plants are drawn into a split cascade again only when that cascade's
+// Earth-fixed box moved (ShadowSettings::recentreMargin; the VegetationRenderer's key
+// holds no camera position), a few cascades in all where the former key (the camera in
+// whole cascade texels, 1-5 cm here) redrew the four split cascades at every step. The
+// last view, its plant depth drawn from earlier cameras, has the shade of a fresh draw (a
+// thinned forest in between) within 2 %, and under 2 % of its pixels' sun visibility
+// differ by more than 8 of 255 (noise texels at a threshold; 0.7 % seen).
+TEST_F(VegetationGolden, PlantShadowsStayCachedWhileWalking) {
+    const InstanceBatch batch = forest();
+    const VegetationSettings vegetation;
+    const auto cameraAt = [&](int step) {
+        Camera c = camera(110.0 - 0.3 * step, 20.0, -20.0 * kDegree, 50.0 * kDegree);
+        c.axes = Camera::axesFromAngles(c.geodetic, 0.2 * step * kDegree, -20.0 * kDegree, 0.0);
+        return c;
+    };
+    (void)render(cameraAt(0), 160, 90, {&batch}, vegetation, true);
+    std::vector<ShadowCascade> previous = renderer_->shadowMaps().cascades();
+    ASSERT_EQ(previous.size(), 5u);
+    std::size_t plantDraws = 0, splitMoves = 0;
+    const int steps = 16;
+    Image last;
+    for (int step = 1; step <= steps; ++step) {
+        last = render(cameraAt(step), 160, 90, {&batch}, vegetation, true);
+        const std::vector<ShadowCascade>& cascades = renderer_->shadowMaps().cascades();
+        std::size_t moved = 0;
+        for (std::size_t i = 0; i < cascades.size(); ++i) {
+            moved += !cascades[i].terrainOnly && cascades[i].boxLight != previous[i].boxLight;
+        }
+        EXPECT_EQ(renderer_->vegetation().statistics().shadowCascades, moved) << "step " << step;
+        plantDraws += renderer_->vegetation().statistics().shadowCascades;
+        splitMoves += moved;
+        previous = cascades;
+    }
+    std::printf("forest walk: plants drawn into %zu of %d split cascades, %zu boxes moved\n",
+                plantDraws, steps * 4, splitMoves);
+    EXPECT_LE(plantDraws, 6u);
+    // Afresh: another sun empties the cache (render's sun is fixed, so a thinned forest
+    // in between, which draws the split cascades again, then the forest).
+    const InstanceBatch thinned = forest(125);
+    (void)render(cameraAt(steps), 160, 90, {&thinned}, vegetation, true);
+    const Image fresh = render(cameraAt(steps), 160, 90, {&batch}, vegetation, true);
+    EXPECT_EQ(renderer_->vegetation().statistics().shadowCascades, 4u);
+    // The crowns' noise is point-sampled per shadow texel in camera-relative floats, so a
+    // depth drawn from another camera flips a few texels whose sample lies at a noise
+    // threshold: compare the shade (mean visibility) and count the pixels that changed.
+    double lastSum = 0.0, freshSum = 0.0;
+    std::size_t changed = 0;
+    const std::size_t pixels = fresh.pixels.size() / 4;
+    for (std::size_t i = 0; i < pixels; ++i) {
+        lastSum += last.pixels[4 * i + 1];
+        freshSum += fresh.pixels[4 * i + 1];
+        changed += std::abs(int(last.pixels[4 * i + 1]) - int(fresh.pixels[4 * i + 1])) > 8;
+    }
+    const double shade = 1.0 - freshSum / (255.0 * double(pixels));
+    const double shadeCached = 1.0 - lastSum / (255.0 * double(pixels));
+    std::printf("forest walk: shade %.4f cached, %.4f fresh; %zu of %zu pixels changed\n",
+                shadeCached, shade, changed, pixels);
+    EXPECT_GT(shade, 0.05) << "no shadows to compare";
+    EXPECT_NEAR(shadeCached / shade, 1.0, 0.02);
+    EXPECT_LT(changed, pixels / 50);
+}
+
 // A dolly from 300 m to 8 m: every LoD step and the mesh handover happen on the way.
 // Popping is a change of the LoD image from one frame to the next that the source mesh
 // does not make along the same path: per pixel (LoD(i+1) − LoD(i)) − (mesh(i+1) − mesh(i)).

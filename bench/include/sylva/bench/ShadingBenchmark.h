@@ -24,6 +24,10 @@ struct ShadingBenchmarkOptions {
     int forestFramesPerSegment = 2;  // forest path: 4 segments (9 frames)
     int trees = 10000;
     int leaves = 1000;  // of the generated oak
+    // Moving camera (bench/ShadowBenchmark.h): timed frames per stretch (0: none) and the
+    // cascades' re-centring margin (ShadowSettings::recentreMargin; negative: the default).
+    int movingFrames = 24;
+    double shadowMargin = -1.0;
 };
 
 struct ShadingBenchmarkResult {

@@ -7,7 +7,13 @@
 // bounding sphere, whose size depends only on the splits and the field of view, never
 // on the camera's orientation. The light-space centre is snapped to whole texels in
 // absolute light coordinates (double), so a moving or turning camera moves the texel
-// grid in whole texels only: shadow edges do not shimmer. One more, coarser cascade
+// grid in whole texels only: shadow edges do not shimmer. Each box is `recentreMargin`
+// wider than its slice's sphere and its centre is snapped to a coarse Earth-fixed grid
+// of whole texels (cells of up to twice the margin), so the box still holds the sphere
+// and stays where it is while the camera moves or turns within a cell: its depth can be
+// kept across frames (ShadowMaps' cache) instead of being redrawn whenever the camera
+// crosses a texel. The boxes depend on the camera alone (no history), so an image does
+// not depend on what was rendered before it. One more, coarser cascade
 // (`terrainDistance`, terrain only) keeps long mountain shadows beyond the others: a
 // ridge 20 km away still shades a valley at dusk.
 //
@@ -36,15 +42,24 @@ struct ShadowSettings {
     double splitBlend = 0.9;           // 1: logarithmic splits, 0: uniform
     double firstSplitStart = 1.0;      // metres: where the logarithmic split scheme starts
     double terrainDistance = 60000.0;  // metres: the terrain-only far cascade (0: none)
+    // Fraction of each slice's sphere radius added to its box on every side; the box
+    // centre snaps to cells of whole texels up to twice that wide, so a camera moving
+    // within a cell keeps the box (and its cached depth). 0: the box follows the camera
+    // texel by texel (every move of a texel redraws the cascade). Costs (1 + margin)
+    // times larger texels.
+    double recentreMargin = 0.125;
 };
 
 struct ShadowCascade {
     double nearDistance = 0;  // metres of view distance (along the view axis) covered
     double farDistance = 0;
-    double radius = 0;               // metres: the bounding sphere of the slice
+    double radius = 0;               // metres: half the box's width (sphere + margin)
+    double sliceRadius = 0;          // metres: the bounding sphere of the slice
     double texelSize = 0;            // metres per shadow-map texel
+    double cellSize = 0;             // metres: the grid the box centre snaps to (whole texels)
     bool terrainOnly = false;        // the far cascade: only terrain casts into it
     glm::dvec3 centerRelative{0.0};  // sphere centre, camera-relative ECEF
+    glm::dvec3 boxRelative{0.0};     // box centre, camera-relative ECEF
     glm::dvec3 boxLight{0.0};        // the box centre in absolute light coordinates (snapped)
     glm::dmat4 projection{1.0};      // light-rotated camera-relative -> clip (see above)
 };

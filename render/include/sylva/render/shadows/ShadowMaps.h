@@ -4,8 +4,10 @@
 // the cascades (ShadowCascades), then lets every ShadowCaster draw each layer. The depth
 // of the casters that give a cache key (ShadowCaster::shadowCacheKey: the terrain) is
 // kept per cascade in a second array and copied back while the cascade's Earth-fixed box,
-// the sun and their keys stay the same, so a still or slowly moving camera does not
-// redraw the terrain into five 2048² maps every frame (docs/benchmarks.md, shadows).
+// the sun and their keys stay the same, so a still or moving camera does not redraw the
+// terrain and plants into five 2048² maps every frame: a cascade is drawn again when its
+// box moves (ShadowSettings::recentreMargin: once per cell of the camera's path) or a
+// key changes (docs/benchmarks.md, shadows).
 //
 // Needs a current GL 4.5 context for create() and render(); destroy it while that
 // context is current. create() fails with an Error naming the missing feature when the

@@ -116,10 +116,11 @@ public:
     // no finer than its texels. Camera-relative like draw(), so the precision is the
     // G-buffer's. Draws every cascade, the terrain-only one included.
     void drawShadow(const ShadowView& view) override;
-    // The state drawShadow's depth depends on besides the cascade: the levels it draws,
-    // the resident level, the height clipmap's uploads and source, the ocean clamp and the
-    // camera's position in whole cascade texels of the light frame (the rings follow the
-    // camera; within a texel they slide by less than the lookup's bias covers).
+    // The state drawShadow's depth depends on besides the cascade's box and the sun: the
+    // levels it draws, the resident level, the height source and the ocean clamp. Not the
+    // camera: the rings follow it, but around any camera in the box they triangulate the
+    // same heightfield (the clipmap holds the source's tiles) at the same levels, no finer
+    // than the cascade's texels, so a moving camera keeps the depth until its box moves.
     std::optional<std::uint64_t> shadowCacheKey(const ShadowView& view) const override;
 
     const TerrainFrameStatistics& statistics() const { return statistics_; }

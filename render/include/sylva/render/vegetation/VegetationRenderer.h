@@ -128,10 +128,12 @@ public:
     // alpha-tested. Skips the terrain-only cascade.
     void drawShadow(const ShadowView& view) override;
     // What drawShadow's depth depends on besides the cascade's box and the sun (which
-    // ShadowMaps adds): the camera in whole cascade texels (the instances are drawn
-    // camera-relative), the settings that select and draw, the species and their leaf
+    // ShadowMaps adds): the settings that select and draw, the species and their leaf
     // states, and each batch of the last draw() by its InstanceBatch::contentHash (set by
-    // LodSelector::makeBatch; batches are not changed after it).
+    // LodSelector::makeBatch; batches are not changed after it). Not the camera: the
+    // selection is orthographic with a fixed error in texels, so it depends on the box
+    // alone (the instances are drawn camera-relative, which moves a noise sample by less
+    // than a millimetre: a few texels at a noise threshold may flip, the shade does not).
     std::optional<std::uint64_t> shadowCacheKey(const ShadowView& view) const override;
 
     const VegetationStatistics& statistics() const { return statistics_; }
