@@ -22,7 +22,8 @@ struct MeshGpuGeometry {
 struct MeshRenderer::ResidentTile {
     std::shared_ptr<const MeshTile> tile;
     std::unique_ptr<MeshGpuGeometry> geometry;  // null when the tile has no static triangles
-    bool shown = false;  // wanted by the last update (else kept for another scenario)
+    bool shown = false;     // wanted by the last update (else kept for another scenario)
+    std::size_t bytes = 0;  // CPU geometry: vertices, indices, placements
 };
 
 namespace {
@@ -207,6 +208,10 @@ Status MeshRenderer::update(const std::vector<const MeshSource*>& sources, TileP
             }
             auto resident = std::make_unique<ResidentTile>();
             resident->tile = tile.value();
+            const MeshTile& built = *tile.value();
+            resident->bytes = built.geometry.vertices.size() * sizeof(MeshVertex) +
+                              built.geometry.indices.size() * sizeof(std::uint32_t) +
+                              built.placements.size() * sizeof(ModelPlacement);
             if (!tile.value()->geometry.empty()) {
                 resident->geometry = upload(tile.value()->geometry);
             }
@@ -215,26 +220,54 @@ Status MeshRenderer::update(const std::vector<const MeshSource*>& sources, TileP
         }
     }
     // Sources of this update keep their wanted tiles only. Those of other scenarios keep
-    // the tiles of their last update while it is recent (not drawn): a comparison draws
-    // two scenarios a frame, and dropping one's tiles for the other rebuilt a whole city,
+    // the tiles of their last update, not drawn, within keptBytes: a comparison draws two
+    // scenarios a frame, and dropping one's tiles for the other rebuilt a whole city,
     // with its ground samples, every frame.
-    std::erase_if(lastUpdate_,
-                  [&](const auto& entry) { return updates_ - entry.second > kKeptUpdates; });
     std::erase_if(tiles_, [&](const auto& entry) {
-        const auto last = lastUpdate_.find(entry.first.first);
-        if (last == lastUpdate_.end()) {
-            return true;
-        }
-        return last->second == updates_ && wanted.count(entry.first) == 0;
+        return lastUpdate_.at(entry.first.first) == updates_ && wanted.count(entry.first) == 0;
     });
     for (auto& [id, resident] : tiles_) {
         resident->shown = wanted.count(id) != 0;
     }
+    dropKeptTiles(settings.keptBytes);
     std::erase_if(models_, [](const auto& entry) { return entry.second.model.use_count() == 1; });
     statistics_.residentTiles = tiles_.size();
     statistics_.buildSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return Status::success();
+}
+
+void MeshRenderer::dropKeptTiles(std::size_t keptBytes) {
+    std::map<std::uint64_t, std::size_t> keptPerSource;
+    std::size_t kept = 0;
+    for (const auto& [id, resident] : tiles_) {
+        if (!resident->shown) {
+            keptPerSource[id.first] += resident->bytes;
+            kept += resident->bytes;
+        }
+    }
+    // Sources listed longest ago first.
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> byAge;  // (last update, hash)
+    for (const auto& [hash, last] : lastUpdate_) {
+        if (last != updates_) {
+            byAge.emplace_back(last, hash);
+        }
+    }
+    std::sort(byAge.begin(), byAge.end());
+    std::set<std::uint64_t> dropped;
+    for (const auto& [last, hash] : byAge) {
+        if (kept <= keptBytes) {
+            break;
+        }
+        kept -= keptPerSource[hash];
+        dropped.insert(hash);
+    }
+    std::erase_if(tiles_, [&](const auto& entry) { return dropped.count(entry.first.first) != 0; });
+    // A source with no tile left is forgotten (a reload's old hashes go this way).
+    std::erase_if(lastUpdate_, [&](const auto& entry) {
+        return entry.second != updates_ &&
+               (dropped.count(entry.first) != 0 || keptPerSource.count(entry.first) == 0);
+    });
 }
 
 const MeshRenderer::ModelEntry& MeshRenderer::modelEntry(
