@@ -35,8 +35,7 @@ int runObjectsBench(const std::vector<std::string>& arguments) {
     };
     for (const Count& count : {Count{"buildings", 1, 1000000, &options.buildings},
                                Count{"turbines", 1, 100000, &options.turbines},
-                               Count{"frames", 1, 1000, &options.framesPerSegment},
-                               Count{"cache-mb", 1, 1 << 20, &options.cacheMegabytes}}) {
+                               Count{"frames", 1, 1000, &options.framesPerSegment}}) {
         const Result<std::optional<int>> value =
             wholeNumberOption(command, count.name, count.minimum, count.maximum,
                               "expects a whole number within " + std::to_string(count.minimum) +
@@ -48,6 +47,12 @@ int runObjectsBench(const std::vector<std::string>& arguments) {
         }
         *count.target = value.value().value_or(*count.target);
     }
+    const Result<std::optional<std::size_t>> cache = cacheMegabytesOption(command);
+    if (!cache) {
+        reportError(cache.error().message);
+        return 2;
+    }
+    options.cacheMegabytes = cache.value().value_or(options.cacheMegabytes);
     render::ContextOptions contextOptions;
     Result<std::optional<render::GlBackend>> backend = glBackendOption(command);
     if (!backend) {

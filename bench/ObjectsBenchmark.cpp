@@ -223,7 +223,7 @@ Result<ObjectsBenchmarkResult> runObjectsBenchmark(const ShaderLibrary& library,
     const HypsometricSource colour("dem.colour", &elevation, &normals, HypsometricParameters{});
     SchedulerOptions schedulerOptions;
     schedulerOptions.format = TileFormat{256, 2};
-    schedulerOptions.budgetBytes = std::size_t(options.cacheMegabytes) << 20;
+    schedulerOptions.budgetBytes = options.cacheMegabytes << 20;
     Scheduler scheduler(schedulerOptions);
 
     FeatureSource footprints("city", writeCity(folder, options.buildings), {});
@@ -292,7 +292,7 @@ Result<ObjectsBenchmarkResult> runObjectsBenchmark(const ShaderLibrary& library,
     }
     const SchedulerStatistics totals = scheduler.totals();
     std::fprintf(stderr,
-                 "objects: cache budget %d MiB, peak %.0f MiB, now %.0f MiB in %zu tiles; "
+                 "objects: cache budget %zu MiB, peak %.0f MiB, now %.0f MiB in %zu tiles; "
                  "%zu produced, %zu evicted\n",
                  options.cacheMegabytes, double(scheduler.peakCachedBytes()) / (1 << 20),
                  double(totals.bytes) / (1 << 20), totals.tiles, totals.misses, totals.evictions);

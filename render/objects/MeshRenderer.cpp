@@ -22,7 +22,9 @@ struct MeshGpuGeometry {
 struct MeshRenderer::ResidentTile {
     std::shared_ptr<const MeshTile> tile;
     std::unique_ptr<MeshGpuGeometry> geometry;  // null when the tile has no static triangles
-    bool shown = false;  // wanted by the last update (else kept for another scenario)
+    std::uint64_t lastWanted = 0;               // the update that last wanted it
+    bool shown = false;                         // wanted by the last update (else kept for later)
+    std::size_t bytes = 0;                      // CPU geometry: vertices, indices, placements
 };
 
 namespace {
@@ -193,12 +195,12 @@ Status MeshRenderer::update(const std::vector<const MeshSource*>& sources, TileP
         if (!bounds) {
             return bounds.error();
         }
-        lastUpdate_[source->contentHash()] = updates_;
         for (const TileKey& key : keysNear(bounds.value(), camera.geodetic.latitude,
                                            camera.geodetic.longitude, settings.maximumDistance)) {
             const std::pair<std::uint64_t, TileKey> id{source->contentHash(), key};
             wanted.insert(id);
-            if (tiles_.count(id) != 0) {
+            if (auto found = tiles_.find(id); found != tiles_.end()) {
+                found->second->lastWanted = updates_;
                 continue;
             }
             Result<std::shared_ptr<const MeshTile>> tile = source->tile(key, provider);
@@ -207,6 +209,11 @@ Status MeshRenderer::update(const std::vector<const MeshSource*>& sources, TileP
             }
             auto resident = std::make_unique<ResidentTile>();
             resident->tile = tile.value();
+            resident->lastWanted = updates_;
+            const MeshTile& built = *tile.value();
+            resident->bytes = built.geometry.vertices.size() * sizeof(MeshVertex) +
+                              built.geometry.indices.size() * sizeof(std::uint32_t) +
+                              built.placements.size() * sizeof(ModelPlacement);
             if (!tile.value()->geometry.empty()) {
                 resident->geometry = upload(tile.value()->geometry);
             }
@@ -214,27 +221,39 @@ Status MeshRenderer::update(const std::vector<const MeshSource*>& sources, TileP
             ++statistics_.tilesBuilt;
         }
     }
-    // Sources of this update keep their wanted tiles only. Those of other scenarios keep
-    // the tiles of their last update while it is recent (not drawn): a comparison draws
-    // two scenarios a frame, and dropping one's tiles for the other rebuilt a whole city,
-    // with its ground samples, every frame.
-    std::erase_if(lastUpdate_,
-                  [&](const auto& entry) { return updates_ - entry.second > kKeptUpdates; });
-    std::erase_if(tiles_, [&](const auto& entry) {
-        const auto last = lastUpdate_.find(entry.first.first);
-        if (last == lastUpdate_.end()) {
-            return true;
-        }
-        return last->second == updates_ && wanted.count(entry.first) == 0;
-    });
+    // Tiles not wanted now (out of range, or another scenario's) stay, not drawn, within
+    // keptBytes: a comparison draws two scenarios a frame and a flight comes back, and
+    // dropping them rebuilt a whole city, with its ground samples, at each switch.
     for (auto& [id, resident] : tiles_) {
-        resident->shown = wanted.count(id) != 0;
+        resident->shown = resident->lastWanted == updates_;
     }
+    dropKeptTiles(settings.keptBytes);
     std::erase_if(models_, [](const auto& entry) { return entry.second.model.use_count() == 1; });
     statistics_.residentTiles = tiles_.size();
     statistics_.buildSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return Status::success();
+}
+
+void MeshRenderer::dropKeptTiles(std::size_t keptBytes) {
+    std::vector<std::pair<std::uint64_t, std::pair<std::uint64_t, TileKey>>> kept;  // by age
+    std::size_t bytes = 0;
+    for (const auto& [id, resident] : tiles_) {
+        if (!resident->shown) {
+            kept.emplace_back(resident->lastWanted, id);
+            bytes += resident->bytes;
+        }
+    }
+    // Wanted longest ago first (a reload's old hashes go this way too).
+    std::sort(kept.begin(), kept.end());
+    for (const auto& [age, id] : kept) {
+        if (bytes <= keptBytes) {
+            break;
+        }
+        auto tile = tiles_.find(id);
+        bytes -= tile->second->bytes;
+        tiles_.erase(tile);
+    }
 }
 
 const MeshRenderer::ModelEntry& MeshRenderer::modelEntry(

@@ -70,7 +70,8 @@ expect_no_png "$SCRATCH/cache"
 end
 
 begin "--cache-mb out of range: one message for every command that takes it"
-for command in "watch $PROJECTS/tiny.sylva --exit-after 1" "bench tiles" "bench terrain"; do
+for command in "watch $PROJECTS/tiny.sylva --exit-after 1" "bench tiles" "bench terrain" \
+               "bench objects"; do
   run $command --cache-mb 8
   expect_rc 2
   expect_stderr "sylva: --cache-mb expects a tile cache budget in MiB within 16..1048576, got '8'"

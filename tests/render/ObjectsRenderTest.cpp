@@ -99,6 +99,7 @@ protected:
         TerrainLayers layers{&ground_, nullptr, &normals_, {}, meshes};
         RenderSettings settings;
         settings.instanceBatches = trees;
+        settings.meshes.keptBytes = keptBytes_;
         settings.width = kSize;
         settings.height = kSize;
         settings.atmosphere = false;
@@ -125,6 +126,7 @@ protected:
     const NormalMapSource normals_{"ground.normals", &ground_, 1.0};
     TileEvaluator evaluator_{TileFormat{256, 2}};
     Image lastImage_;
+    std::size_t keptBytes_ = MeshSettings{}.keptBytes;
 };
 
 TEST_F(ObjectsRender, BuildingTopIsAtTerrainPlusHeight) {
@@ -179,6 +181,13 @@ TEST_F(ObjectsRender, AnotherScenariosTilesStayResidentButAreNotDrawn) {
     EXPECT_EQ(renderer_->statistics().meshes.tilesBuilt, 0u);
     EXPECT_NEAR(heightAt(camera, depth, kSize / 2, kSize / 2), kGround + 12.0, 0.01);
     EXPECT_NEAR(heightAt(camera, depth, int(kSize * (0.5 + east)), kSize / 2), kGround, 0.05);
+    // With no room for other scenarios' geometry, switching builds again.
+    keptBytes_ = 0;
+    depth = render({&proposed}, camera);
+    EXPECT_EQ(renderer_->statistics().meshes.residentTiles, 1u);
+    depth = render({&today}, camera);
+    EXPECT_EQ(renderer_->statistics().meshes.tilesBuilt, 1u);
+    EXPECT_NEAR(heightAt(camera, depth, kSize / 2, kSize / 2), kGround + 12.0, 0.01);
 }
 
 TEST_F(ObjectsRender, TurbineHubIsAtHubHeight) {

@@ -12,6 +12,7 @@
 // buildings_triangles (of the whole city). Needs a current GL 4.5 context.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "sylva/bench/BenchmarkMetrics.h"
@@ -25,8 +26,9 @@ struct ObjectsBenchmarkOptions {
     int height = 720;
     int buildings = 100000;
     int turbines = 1000;
-    int framesPerSegment = 4;   // frames between successive altitudes of the flight
-    int cacheMegabytes = 1024;  // the Scheduler's tile budget (SchedulerOptions::budgetBytes)
+    int framesPerSegment = 4;  // frames between successive altitudes of the flight
+    std::size_t cacheMegabytes =
+        1024;  // the Scheduler's tile budget (SchedulerOptions::budgetBytes)
 };
 
 struct ObjectsBenchmarkResult {

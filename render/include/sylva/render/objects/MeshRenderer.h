@@ -5,14 +5,15 @@
 //
 // Streaming: update() keeps the tiles (MeshSource::kTileLevel) within
 // MeshSettings::maximumDistance of the camera resident, building missing ones through the
-// provider (the sources' elevation) and dropping the rest. Tiles of sources not in this
-// update (another scenario's) stay resident, undrawn, as their last update left them
-// until kKeptUpdates updates pass without them: scenario comparisons and benchmarks draw
-// several scenarios in turn, and rebuilding a city at each switch cost minutes a frame. Models are
-// uploaded once per MeshModel and drawn instanced: one draw per model part, level of detail and
-// tile. Level of detail: each placement draws each part at the coarsest simplified level
-// (ModelPart:: levels, OpenMesh's quadric decimation) whose geometric error, scaled by the
-// placement, projects below half a pixel at its distance (full detail for views without a pixel
+// provider (the sources' elevation). Tiles not wanted by this update (out of range, or
+// another scenario's) stay resident, not drawn, while their geometry stays within
+// MeshSettings::keptBytes (beyond it, those wanted longest ago go first): scenario
+// comparisons draw several scenarios in turn and flights come back, and rebuilding a
+// city at each switch cost minutes a frame. Models are uploaded once per MeshModel and
+// drawn instanced: one draw per model part, level of detail and tile. Level of detail:
+// each placement draws each part at the coarsest simplified level (ModelPart::levels,
+// OpenMesh's quadric decimation) whose geometric error, scaled by the placement,
+// projects below half a pixel at its distance (full detail for views without a pixel
 // angle, such as the shadow maps).
 //
 // Precision: every tile and placement is transformed relative to the eye in double on the
@@ -61,6 +62,10 @@ struct MeshDrawView {
 struct MeshSettings {
     double maximumDistance = 20000.0;  // metres: tiles farther from the camera are not drawn
     double minimumPixels = 1.0;        // placements smaller on screen are skipped
+    // Bytes of geometry (vertices, indices, placements) of tiles kept though not wanted
+    // by the update (the 100,000-building benchmark city: 1.13 million triangles, at most
+    // about 140 MB).
+    std::size_t keptBytes = std::size_t(512) << 20;
 };
 
 struct MeshStatistics {
@@ -107,11 +112,10 @@ private:
     GlBuffer instanceBuffer_;
     std::size_t instanceCapacity_ = 0;
     std::vector<float> instanceScratch_;
-    // Updates that may pass without a source before its tiles are dropped.
-    static constexpr std::uint64_t kKeptUpdates = 8;
+    // Drops tiles not wanted by the current update beyond `keptBytes` bytes, those
+    // wanted longest ago first.
+    void dropKeptTiles(std::size_t keptBytes);
     std::uint64_t updates_ = 0;
-    // Per source content hash, the update that last listed it.
-    std::map<std::uint64_t, std::uint64_t> lastUpdate_;
     // Resident tiles by (source content hash, key).
     std::map<std::pair<std::uint64_t, TileKey>, std::unique_ptr<ResidentTile>> tiles_;
     // Uploaded models; the shared pointer keeps the address from being reused.
