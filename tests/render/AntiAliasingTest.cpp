@@ -12,6 +12,7 @@
 #include <numbers>
 #include <vector>
 
+#include "FlatElevation.h"
 #include "sylva/core/base/Hash.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/scheduler/TileEvaluator.h"
@@ -23,19 +24,6 @@ namespace sylva::render {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180;
-
-class FlatElevation final : public Source {
-public:
-    FlatElevation() : Source("flat", "test", PortType::Elevation, 1) {
-        setParameterHash(ContentHash().add(std::string_view("flat-v1")).value());
-    }
-    Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override {
-        const TileFormat& format = provider.format();
-        auto tile = std::make_shared<ImageTile>(key, format.size, format.border, 1);
-        std::fill(tile->texels().begin(), tile->texels().end(), 0.0f);
-        return TilePointer(tile);
-    }
-};
 
 double srgbToLinear(std::uint8_t code) {
     const double c = code / 255.0;

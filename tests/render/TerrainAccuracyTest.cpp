@@ -11,6 +11,7 @@
 #include <numbers>
 #include <vector>
 
+#include "FlatElevation.h"
 #include "sylva/core/base/Hash.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/scheduler/TileEvaluator.h"
@@ -53,18 +54,6 @@ public:
 
 private:
     double offset_;
-};
-
-// Sea level everywhere (0 m): the surface is the ellipsoid itself.
-class FlatElevation final : public Source {
-public:
-    FlatElevation() : Source("flat", "test", PortType::Elevation, 1) {
-        setParameterHash(ContentHash().add(std::string_view("flat-v1")).value());
-    }
-    Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override {
-        const TileFormat& format = provider.format();
-        return TilePointer(std::make_shared<ImageTile>(key, format.size, format.border, 1));
-    }
 };
 
 // Distance along `direction` (unit, ECEF) from `origin` to the analytic surface, or
