@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <tuple>
+#include <vector>
 
 #include "sylva/core/base/Hash.h"
 #include "sylva/core/sources/raster/RasterSource.h"
@@ -82,13 +85,23 @@ double blendHeight(BlendMode mode, double b, double o, double w) {
     }
 }
 
-// The input tiles of one produce: base and over always, the mask, the over-source's
-// coverage and its coarse (feather) tile when they apply.
-struct BlendInputs {
-    TilePointer base, over, mask, coverage, coarse;
-};
+// A weight this close to 1 is 1: bilinear sums of full coverage land within a few ulps of
+// 1, and a texel blended with such a weight is the over-source's value to float precision.
+// Snapping makes it exactly that, so a tile whose texels all take the over-source (read
+// alone, below) equals the same texels blended one by one.
+constexpr double kWholeWeight = 1.0 - 1e-9;
+
+double wholeOrClamped(double weight) {
+    return weight >= kWholeWeight ? 1.0 : std::max(weight, 0.0);
+}
 
 }  // namespace
+
+// The input tiles of one produce: the mask, the over-source's coverage and its coarse
+// (feather) tile when they apply, and base and over when the weights need them.
+struct BlendSource::Inputs {
+    TilePointer base, over, mask, coverage, coarse;
+};
 
 BlendSource::BlendSource(std::string name, const Source* base, const Source* over,
                          const Source* mask, const BlendParameters& parameters)
@@ -141,10 +154,23 @@ int BlendSource::featherLevel(double featherMetres, int tileSize, int level) {
 }
 
 Result<TilePointer> BlendSource::produce(const TileKey& key, TileProvider& provider) const {
-    BlendInputs in;
-    for (auto [source, slot] :
-         {std::pair{base_, &in.base}, std::pair{over_, &in.over}, std::pair{mask_, &in.mask}}) {
-        if (source == nullptr) {
+    // Lazy in both inputs (seed 001's demand-driven tile evaluation carried into a blend):
+    // the weights come first, from the mask and the over-source's coverage, and an input
+    // whose texels all have weight 0 (over) or 1 (base under a replacing over) is never
+    // asked for. Inside a DEM the procedural relief under it is then never synthesised.
+    Inputs in;
+    if (std::optional<Error> error = fetchWeightInputs(key, provider, in)) {
+        return *error;
+    }
+    const std::vector<double> weights = texelWeights(in, key, provider.format());
+    const bool anyOver =
+        std::any_of(weights.begin(), weights.end(), [](double w) { return w > 0; });
+    const bool replacesAll =
+        parameters_.mode == BlendMode::Normal &&
+        std::all_of(weights.begin(), weights.end(), [](double w) { return w >= 1.0; });
+    for (auto [source, slot, needed] :
+         {std::tuple{base_, &in.base, !replacesAll}, std::tuple{over_, &in.over, anyOver}}) {
+        if (!needed || *slot) {
             continue;
         }
         Result<TilePointer> tile = provider.tile(*source, key);
@@ -153,34 +179,61 @@ Result<TilePointer> BlendSource::produce(const TileKey& key, TileProvider& provi
         }
         *slot = tile.value();
     }
-    const bool image = output() == PortType::Image;
-    const int coverageChannel = image ? 3 : 0;
-    if (overCoverage_ != nullptr) {
-        if (overCoverage_ == over_) {
-            in.coverage = in.over;
-        } else {
-            Result<TilePointer> c = provider.tile(*overCoverage_, key);
-            if (!c) {
-                return c.error();
-            }
-            in.coverage = c.value();
-        }
-        if (parameters_.feather > 0.0) {
-            const int level = featherLevel(parameters_.feather, provider.format().size, key.level);
-            Result<TilePointer> c = provider.tile(*overCoverage_, coarseKey(key, level));
-            if (!c) {
-                return c.error();
-            }
-            in.coarse = c.value();
-        }
+    if (replacesAll) {
+        return TilePointer(std::make_shared<ImageTile>(*in.over));
     }
-    const ImageTile& base = *in.base;
-    const ImageTile& over = *in.over;
-    auto tile = std::make_shared<ImageTile>(base);
-    const int border = tile->border(), size = tile->size();
-    for (int iy = -border; iy < size + border; ++iy) {
-        const double latitude = tile->texelLatitude(iy);
-        for (int ix = -border; ix < size + border; ++ix) {
+    auto tile = std::make_shared<ImageTile>(*in.base);
+    if (anyOver) {
+        blendTexels(*in.over, weights, *tile);
+    }
+    return TilePointer(std::move(tile));
+}
+
+std::optional<Error> BlendSource::fetchWeightInputs(const TileKey& key, TileProvider& provider,
+                                                    Inputs& in) const {
+    if (mask_ != nullptr) {
+        Result<TilePointer> m = provider.tile(*mask_, key);
+        if (!m) {
+            return m.error();
+        }
+        in.mask = m.value();
+    }
+    if (overCoverage_ == nullptr) {
+        return std::nullopt;
+    }
+    Result<TilePointer> c = provider.tile(*overCoverage_, key);
+    if (!c) {
+        return c.error();
+    }
+    in.coverage = c.value();
+    if (overCoverage_ == over_) {
+        in.over = in.coverage;  // an image's coverage is its own alpha
+    }
+    if (parameters_.feather > 0.0) {
+        const int level = featherLevel(parameters_.feather, provider.format().size, key.level);
+        Result<TilePointer> coarse = provider.tile(*overCoverage_, coarseKey(key, level));
+        if (!coarse) {
+            return coarse.error();
+        }
+        in.coarse = coarse.value();
+    }
+    return std::nullopt;
+}
+
+std::vector<double> BlendSource::texelWeights(const Inputs& in, const TileKey& key,
+                                              const TileFormat& format) const {
+    const int border = format.border, side = format.size + 2 * border;
+    std::vector<double> weights(std::size_t(side) * side, wholeOrClamped(parameters_.opacity));
+    if (!in.coverage && !in.mask) {
+        return weights;  // the opacity alone
+    }
+    // The texel grid of the output tile (every input shares the key's grid).
+    const ImageTile& grid = in.coverage ? *in.coverage : *in.mask;
+    SYLVA_CHECK(grid.key() == key && grid.size() == format.size && grid.border() == border);
+    const int coverageChannel = output() == PortType::Image ? 3 : 0;
+    for (int iy = -border; iy < grid.size() + border; ++iy) {
+        const double latitude = grid.texelLatitude(iy);
+        for (int ix = -border; ix < grid.size() + border; ++ix) {
             double w = parameters_.opacity;
             if (in.mask) {
                 w *= std::clamp<double>(in.mask->at(ix, iy, 0), 0.0, 1.0);
@@ -191,28 +244,39 @@ Result<TilePointer> BlendSource::produce(const TileKey& key, TileProvider& provi
             if (in.coarse && w > 0.0) {
                 w *= smoothstep(
                     0.5, 1.0,
-                    sample(*in.coarse, coverageChannel, tile->texelLongitude(ix), latitude));
+                    sample(*in.coarse, coverageChannel, grid.texelLongitude(ix), latitude));
             }
+            weights[std::size_t(iy + border) * side + (ix + border)] = wholeOrClamped(w);
+        }
+    }
+    return weights;
+}
+
+void BlendSource::blendTexels(const ImageTile& over, const std::vector<double>& weights,
+                              ImageTile& tile) const {
+    const int border = tile.border(), size = tile.size(), side = size + 2 * border;
+    for (int iy = -border; iy < size + border; ++iy) {
+        for (int ix = -border; ix < size + border; ++ix) {
+            const double w = weights[std::size_t(iy + border) * side + (ix + border)];
             if (w <= 0.0) {
                 continue;
             }
-            if (!image) {
-                tile->at(ix, iy, 0) = static_cast<float>(
-                    blendHeight(parameters_.mode, base.at(ix, iy, 0), over.at(ix, iy, 0), w));
+            if (output() != PortType::Image) {
+                tile.at(ix, iy, 0) = static_cast<float>(
+                    blendHeight(parameters_.mode, tile.at(ix, iy, 0), over.at(ix, iy, 0), w));
                 continue;
             }
             for (int c = 0; c < 3; ++c) {
-                const double b = base.at(ix, iy, c);
+                const double b = tile.at(ix, iy, c);
                 const double f = blendChannel(parameters_.mode, b, over.at(ix, iy, c));
-                tile->at(ix, iy, c) = static_cast<float>(b + (f - b) * w);
+                tile.at(ix, iy, c) = static_cast<float>(b + (f - b) * w);
             }
-            if (tile->channels() > 3) {
-                const double a = base.at(ix, iy, 3);
-                tile->at(ix, iy, 3) = static_cast<float>(w + a * (1.0 - w));
+            if (tile.channels() > 3) {
+                const double a = tile.at(ix, iy, 3);
+                tile.at(ix, iy, 3) = static_cast<float>(w + a * (1.0 - w));
             }
         }
     }
-    return TilePointer(std::move(tile));
 }
 
 Result<std::unique_ptr<Source>> BlendSource::create(const SourceBuildContext& context) {

@@ -218,5 +218,82 @@ TEST(BlendSource, FeatherMergesALocalDemWithoutAStep) {
     }
 }
 
+// A constant elevation that counts the tiles it produces.
+class CountingElevation final : public Source {
+public:
+    CountingElevation(std::string name, float height)
+        : Source(std::move(name), "counting", PortType::Elevation, 1), height_(height) {
+        setParameterHash(std::uint64_t(height * 1000.0f) + 17);
+    }
+    Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override {
+        ++produced;
+        const TileFormat& format = provider.format();
+        auto tile = std::make_shared<ImageTile>(key, format.size, format.border, 1);
+        for (int iy = -format.border; iy < format.size + format.border; ++iy) {
+            for (int ix = -format.border; ix < format.size + format.border; ++ix) {
+                tile->at(ix, iy, 0) = height_;
+            }
+        }
+        return TilePointer(std::move(tile));
+    }
+    mutable int produced = 0;
+
+private:
+    float height_;
+};
+
+TEST(BlendSource, ReadsAnInputOnlyWhereItHasWeight) {
+    const FunctionMask everywhere(21, [](double, double) { return 1.0; });
+    const FunctionMask nowhere(22, [](double, double) { return 0.0; });
+    const FunctionMask half(23, [](double, double) { return 0.5; });
+    struct Case {
+        const Source* mask;
+        BlendMode mode;
+        int baseReads, overReads;
+        float expected;
+    };
+    const Case cases[] = {{&everywhere, BlendMode::Normal, 0, 1, 40.0f},  // replaced: no base
+                          {&everywhere, BlendMode::Max, 1, 1, 100.0f},    // max needs the base
+                          {&nowhere, BlendMode::Normal, 1, 0, 100.0f},    // no weight: no over
+                          {&half, BlendMode::Normal, 1, 1, 70.0f}};
+    for (const Case& c : cases) {
+        const CountingElevation base("base", 100.0f), over("over", 40.0f);
+        BlendParameters p;
+        p.mode = c.mode;
+        const BlendSource blend("b", &base, &over, c.mask, p);
+        TileEvaluator evaluator(TileFormat{8, 2});
+        const ImageTile& tile = *evaluator.tile(blend, TileKey{}).value();
+        EXPECT_EQ(base.produced, c.baseReads) << static_cast<int>(c.mode);
+        EXPECT_EQ(over.produced, c.overReads) << static_cast<int>(c.mode);
+        EXPECT_FLOAT_EQ(tile.at(3, 4, 0), c.expected);
+        EXPECT_FLOAT_EQ(tile.at(-2, 9, 0), c.expected);  // the border too
+    }
+}
+
+TEST(BlendSource, AReliefUnderTheInsideOfADemIsNeverProduced) {
+    RasterParameters rp;
+    rp.file = localDem();
+    auto dem = RasterSource::open("dem", rp);
+    ASSERT_FALSE(dem->openError()) << dem->openError()->message;
+    const CountingElevation relief("relief", 200.0f);
+    BlendParameters soft;
+    soft.feather = 1000.0;
+    const BlendSource feathered("soft", &relief, dem.get(), nullptr, soft);
+    TileEvaluator evaluator(TileFormat{16, 2});
+    // Level 16 texels are ~4.8 m: a 77 m tile in the middle of the 5.8 km DEM.
+    const TileKey inside = tileAt(-7.975, -34.89, 16);
+    const ImageTile& merged = *evaluator.tile(feathered, inside).value();
+    EXPECT_EQ(relief.produced, 0);
+    const ImageTile& demTile = *evaluator.tile(*dem, inside).value();
+    for (int iy = -2; iy < 18; ++iy) {
+        for (int ix = -2; ix < 18; ++ix) {
+            ASSERT_EQ(merged.at(ix, iy, 0), demTile.at(ix, iy, 0)) << ix << " " << iy;
+        }
+    }
+    // Across the DEM's west edge the relief is read (and blended in).
+    evaluator.tile(feathered, tileAt(-7.975, -34.916, 12)).value();
+    EXPECT_EQ(relief.produced, 1);
+}
+
 }  // namespace
 }  // namespace sylva

@@ -16,8 +16,14 @@
 // over (normal), base*over (multiply), 1-(1-base)(1-over) (screen), base+over (add),
 // min, max; alpha = w + base.a (1 - w). Elevation: replace/normal mix(base, over, w),
 // add base + w over, min/max mix(base, min/max(base, over), w).
-// Fails when an input fails (the input's error).
+// Lazy: an input is read only where it has weight — `over` not at all when every texel's
+// weight is 0, `base` not at all when every texel's weight is 1 in normal/replace mode (a
+// DEM over a procedural relief then never synthesises the relief inside the DEM).
+// Fails when an input it reads fails (the input's error).
 #pragma once
+
+#include <optional>
+#include <vector>
 
 #include "sylva/core/sources/Source.h"
 #include "sylva/core/sources/SourceBuildContext.h"
@@ -51,6 +57,17 @@ public:
     static int featherLevel(double featherMetres, int tileSize, int level);
 
 private:
+    struct Inputs;
+    // Reads the mask, the over-source's coverage and the feather's coarse coverage.
+    std::optional<Error> fetchWeightInputs(const TileKey& key, TileProvider& provider,
+                                           Inputs& in) const;
+    // Per texel (border included, row-major) weight in [0, 1], snapped to 1 within 1e-9.
+    std::vector<double> texelWeights(const Inputs& in, const TileKey& key,
+                                     const TileFormat& format) const;
+    // Blends `over` into `tile` (a copy of the base) by the weights.
+    void blendTexels(const ImageTile& over, const std::vector<double>& weights,
+                     ImageTile& tile) const;
+
     const Source* base_;
     const Source* over_;
     const Source* mask_;
