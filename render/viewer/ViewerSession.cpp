@@ -663,6 +663,14 @@ Status ViewerSession::screenshot(const std::filesystem::path& path) {
 }
 
 Status ViewerSession::saveCamera(const std::string& name, const std::string& views) {
+    // Interactive frames stand the camera on the finest ground ready so far; a walker saved
+    // before the fine tiles arrived stood on a coarse level's ground (at Olinda's coast,
+    // the sea's: 60 m under the hill it was on), which the batch rejects as under the
+    // terrain. The saved camera is placed as a screenshot places it: on the finest
+    // level's ground, waited for (only the tiles under the camera).
+    const double before = camera_.geodetic.height;
+    settleOnGround(true);
+    dirty_ = dirty_ || camera_.geodetic.height != before;
     if (Status saved = host_.saveCamera(name, camera_, views); !saved) {
         showError(saved.error().message);
         return saved;

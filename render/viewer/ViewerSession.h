@@ -81,7 +81,9 @@ public:
     // Travel speed (metres per second) at the current height above the ground.
     double speed() const;
 
-    // Writes the camera into the project (ViewerHost::saveCamera).
+    // Writes the camera into the project (ViewerHost::saveCamera), first placed on the
+    // finest level's ground as a screenshot places it (walk: eye height over it; fly: at
+    // least the clearance), waiting for the tiles under the camera.
     Status saveCamera(const std::string& name, const std::string& views);
     // Lat/lon/height and distance of the surface under framebuffer pixel (x, y) of the
     // last frame, as text for the overlay; "nothing" when the pixel shows the sky.

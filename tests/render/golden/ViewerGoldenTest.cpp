@@ -295,5 +295,35 @@ TEST(ViewerGolden, AStillWalkerReachesTheFinestLevelOnItsGround) {
     EXPECT_NEAR(last.geodetic.height, std::max(ground.value(), 0.0) + 1.7, 1e-3);
 }
 
+// A walker saved one frame after arriving, before the fine tiles came, is written on the
+// finest level's ground (as the screenshot stands it), so the batch renders it.
+TEST(ViewerGolden, AWalkerSavedBeforeItsTilesArriveIsSavedOnTheFinestGround) {
+    const std::filesystem::path folder = prepare(
+        "walker_saved", "camera aircraft\nmode walk\nframes 1\nsave-camera walker check\nquit\n");
+    const Status ran = runViewer(folder);
+    ASSERT_TRUE(ran) << ran.error().message;
+
+    dsl::LoadResult loaded = dsl::loadProject(folder / "viewer.sylva");
+    ASSERT_FALSE(loaded.hasErrors()) << loaded.render();
+    const Block* block = loaded.scenarios.front().findCamera("walker");
+    ASSERT_NE(block, nullptr);
+    BatchRenderer batch;
+    ASSERT_TRUE(batch.setProject(loaded.scenarios));
+    Result<TerrainLayers> layers = batch.project().terrainLayers("natural");
+    ASSERT_TRUE(layers) << layers.error().message;
+    Scheduler tiles;
+    const ElevationQuery query(*layers->elevation, tiles);
+    const Camera::TerrainHeight noTerrain = [](double, double) -> Result<double> { return 0.0; };
+    Result<Camera> saved = Camera::fromBlock(*block, noTerrain);
+    ASSERT_TRUE(saved) << saved.error().message;
+    // The finest level a walker's view wants (AStillWalkerReachesTheFinestLevelOnItsGround).
+    constexpr int kFinestLevel = 24;
+    Result<double> ground =
+        query.groundHeight(saved->geodetic.latitude, saved->geodetic.longitude, kFinestLevel);
+    ASSERT_TRUE(ground) << ground.error().message;
+    EXPECT_NEAR(saved->geodetic.height, std::max(ground.value(), 0.0) + 1.7, 1e-3);
+    EXPECT_FALSE(renderBatch(folder, "check", "walker").empty());
+}
+
 }  // namespace
 }  // namespace sylva::render
