@@ -398,6 +398,11 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
         statistics_.pending = false;
     }
     near_ = std::clamp(0.3 * statistics_.heightAboveTerrain, 0.02, 1.0e4);
+    // Under a nadir ceiling the ground is drawn a little under the camera whatever the
+    // clearance estimate says (TerrainRenderer::update): a nearer plane keeps it.
+    if (const std::optional<double> ceiling = terrain_->statistics().nadirCeiling) {
+        near_ = std::min(near_, 0.3 * (camera.geodetic.height - *ceiling));
+    }
     const glm::dmat4 projection = SceneRenderer::projection(
         camera.verticalFov, double(settings.width) / settings.height, near_, camera.lensShift);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
