@@ -28,8 +28,9 @@ glm::mat3 toFloat(const glm::dmat3& m) {
 }
 
 // Metres between the camera and the nadir ceiling (terrain.vert's uNadirCeiling): the
-// capped ground under a camera below every resident level's ground. SceneRenderer keeps
-// its near plane closer than that, so the capped ground is never clipped away.
+// capped ground under a camera below every resident level's ground, or less than this
+// above it. SceneRenderer keeps its near plane closer than the drawn ground
+// (TerrainFrameStatistics::nadirGround), so it is never clipped away.
 constexpr double kNadirCeilingMargin = 1.0;
 
 // A resident level whose ground under the camera is below it (`level` -1: none is).
@@ -315,6 +316,7 @@ Result<LevelRange> TerrainRenderer::update(
         resident = fallback;  // rings drawn without blending: one level is enough
     }
     statistics_.residentLevel = resident;
+    statistics_.nadirGround.reset();
     nadirCeiling_.reset();
     if (rooted && resident >= 0) {
         resident = standOrCap(*layers.elevation, provider, camera, resident, blendLevel, fallback);
@@ -351,6 +353,9 @@ int TerrainRenderer::standOrCap(const Source& elevation, TileProvider& provider,
     const double ceiling = camera.geodetic.height - kNadirCeilingMargin;
     if (standing.level < 0 || standing.ground > ceiling) {
         nadirCeiling_ = NadirCeiling{ceiling, camera.geodetic.latitude, camera.geodetic.longitude};
+        statistics_.nadirGround = ceiling;
+    } else {
+        statistics_.nadirGround = standing.ground;
     }
     return standing.level >= 0 ? standing.level : resident;
 }

@@ -4,7 +4,9 @@
 // hold the valley are still being produced. TerrainRenderer::update finds no resident
 // level to stand on (standingLevel) and caps the ground near the nadir a little under the
 // camera (terrain.vert's nadir ceiling); without the cap the coarse surface lies over the
-// camera and rays looking down pass under it to the sky.
+// camera and rays looking down pass under it to the sky. Also: a camera just over a coarse
+// level's ground whose nadir probe found a finer, much lower ground keeps a near plane
+// closer than the ground drawn under it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -48,21 +50,35 @@ public:
 };
 
 // Interactive frames ask with tryGet(): tiles finer than kFinestReadyPyramidLevel are
-// "still being produced" forever; the rest come from the synchronous evaluator.
+// "still being produced" forever (but, after holdNadir, the one under a point: the nadir
+// probe finds it while its level's clipmap windows stay incomplete); the rest come from
+// the synchronous evaluator.
 class SlowFineTiles final : public TileProvider {
 public:
+    void holdNadir(double latitude, double longitude) {
+        nadir_ = true;
+        latitude_ = latitude;
+        longitude_ = longitude;
+    }
     Result<TilePointer> tile(const Source& source, const TileKey& key) override {
         return evaluator_.tile(source, key);
     }
     const TileFormat& format() const override { return evaluator_.format(); }
     TileLookup tryGet(const Source& source, const TileKey& key, int priority) override {
-        if (key.level > kFinestReadyPyramidLevel) {
+        if (key.level > kFinestReadyPyramidLevel && !holdsNadir(key)) {
             return {};  // pending
         }
         return TileProvider::tryGet(source, key, priority);
     }
 
 private:
+    bool holdsNadir(const TileKey& key) const {
+        const double pi = std::numbers::pi;
+        return nadir_ && int(std::floor((longitude_ + pi) / (2 * pi / key.columns()))) == key.x &&
+               int(std::floor((pi / 2 - latitude_) / (pi / key.rows()))) == key.y;
+    }
+    bool nadir_ = false;
+    double latitude_ = 0, longitude_ = 0;  // radians
     TileEvaluator evaluator_{TileFormat{256, 2}};
 };
 
@@ -84,7 +100,8 @@ protected:
 
     static Camera camera(double height, double pitchDegrees) {
         Camera c;
-        c.geodetic = {45.0 * kDegree, 7.0 * kDegree, height};
+        // Not on a tile border at any level (the nadir tile of holdNadir is one tile).
+        c.geodetic = {44.3 * kDegree, 7.3 * kDegree, height};
         c.position = Ellipsoid::toEcef(c.geodetic);
         c.axes = Camera::axesFromAngles(c.geodetic, 20.0 * kDegree, pitchDegrees * kDegree, 0.0);
         c.verticalFov = 60 * kDegree;
@@ -176,6 +193,27 @@ TEST_F(CameraUnderCoarseGround, NoCeilingAboveTheCoarseGround) {
     render(c);
     EXPECT_FALSE(renderer_->statistics().terrain.nadirCeiling.has_value());
     EXPECT_EQ(countHoles(c).holes, 0);
+}
+
+// A camera 1.7 m over the coarse ground (stood on: no ceiling) whose clearance the nadir
+// probe takes from a finer level's tile, 401.7 m: the near plane (0.3 of the clearance)
+// stays closer than the ground drawn under the camera (TerrainFrameStatistics::nadirGround).
+// With 120 m it clipped that ground away and the sky showed below the horizon (the viewer
+// bench's descent frames over a valley: a 6.9 m near plane, ground drawn 1.7 m below).
+TEST_F(CameraUnderCoarseGround, TheNearPlaneKeepsTheGroundDrawnUnderTheCamera) {
+    const Camera c = camera(kCoarseGround + 1.7, -60.0);
+    tiles_.holdNadir(c.geodetic.latitude, c.geodetic.longitude);
+    render(c);
+    const RenderStatistics& statistics = renderer_->statistics();
+    EXPECT_NEAR(statistics.groundHeight, 0.0, 1e-3);  // the probe found the fine tile
+    EXPECT_FALSE(statistics.terrain.nadirCeiling.has_value());
+    ASSERT_TRUE(statistics.terrain.nadirGround.has_value());
+    EXPECT_NEAR(*statistics.terrain.nadirGround, kCoarseGround, 1e-3);
+    EXPECT_LE(renderer_->near(), 0.3 * 1.7 + 1e-6);
+    const HoleCount count = countHoles(c);
+    EXPECT_GT(count.deepRays, kWidth * kHeight / 4);
+    EXPECT_EQ(count.holes, 0) << count.holes << " of " << count.deepRays
+                              << " rays under the surface show sky";
 }
 
 }  // namespace

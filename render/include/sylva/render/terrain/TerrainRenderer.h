@@ -76,6 +76,13 @@ struct TerrainFrameStatistics {
     // the nadir is capped, the cap rising 1:10 with the distance from it (terrain.vert).
     // None when the drawn ground under the camera is below it.
     std::optional<double> nadirCeiling;
+    // Interactive frames: the ground drawn at the nadir, metres (ellipsoid height): the
+    // textureLevel's, or the nadir ceiling; at least 1 m under the camera. The nadir probe
+    // that sets the clearance (SceneRenderer::readyGround) may come from a finer level far
+    // below it, so the near plane has to respect this one too (a 6.9 m near plane over
+    // ground drawn 1.7 m under the camera showed the sky; the bench's descent, issue 20).
+    // None for batch frames and unrooted renderers.
+    std::optional<double> nadirGround;
     std::uint64_t triangles = 0;
     std::uint64_t uploadedBytes = 0;
     double updateSeconds = 0;  // CPU clipmap update including tile evaluation
