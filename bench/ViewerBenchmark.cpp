@@ -238,6 +238,16 @@ Result<ViewerBenchmarkResult> runViewerBenchmark(const ViewerBenchmarkOptions& o
                              s.farFieldPassSeconds * 1e3, s.shadowPassSeconds * 1e3,
                              s.ambientOcclusionPassSeconds * 1e3,
                              double(s.terrain.uploadedBytes) / (1 << 20));
+                // The level the ground near the camera is drawn from, and whether it was
+                // capped under a camera below every resident level's ground.
+                char ceiling[32] = "none";
+                if (s.terrain.nadirCeiling) {
+                    std::snprintf(ceiling, sizeof ceiling, "%.2f m", *s.terrain.nadirCeiling);
+                }
+                std::fprintf(
+                    options.trace,
+                    "  texture level %d, resident level %d, nadir ceiling %s, near %.3f m\n",
+                    s.terrain.textureLevel, s.terrain.residentLevel, ceiling, frame.near);
             }
             std::fflush(options.trace);
         }

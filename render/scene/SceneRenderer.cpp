@@ -398,6 +398,11 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
         statistics_.pending = false;
     }
     near_ = std::clamp(0.3 * statistics_.heightAboveTerrain, 0.02, 1.0e4);
+    // The clearance may come from a finer probe than the level the ground near the camera
+    // is drawn from (or the nadir ceiling): the near plane stays closer than that ground.
+    if (const std::optional<double> ground = terrain_->statistics().nadirGround) {
+        near_ = std::min(near_, 0.3 * (camera.geodetic.height - *ground));
+    }
     const glm::dmat4 projection = SceneRenderer::projection(
         camera.verticalFov, double(settings.width) / settings.height, near_, camera.lensShift);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);

@@ -27,13 +27,26 @@ glm::mat3 toFloat(const glm::dmat3& m) {
     return glm::mat3(m);
 }
 
+// Metres between the camera and the nadir ceiling (terrain.vert's uNadirCeiling): the
+// capped ground under a camera below every resident level's ground, or less than this
+// above it. SceneRenderer keeps its near plane closer than the drawn ground
+// (TerrainFrameStatistics::nadirGround), so it is never clipped away.
+constexpr double kNadirCeilingMargin = 1.0;
+
+// A resident level whose ground under the camera is below it (`level` -1: none is).
+struct Standing {
+    int level = -1;
+    double ground = 0;  // metres (ellipsoid height), of `level` at the nadir
+};
+
 // Interactive frames: the finest of the resident levels (`resident` down to
 // `blendLevel`, all brought up this frame, then `fallback`) whose ground under the camera
 // is below it. A camera placed on finer terrain that is still loading (a walker 1.7 m
 // over the DEM) would otherwise look at a smoother, higher coarse surface from below and
-// see the sky through it. -1 when none is (the resident level is kept then).
-int standingLevel(const Source& elevation, TileProvider& provider, const Camera& camera,
-                  int resident, int blendLevel, int fallback) {
+// see the sky through it. Level -1 when none is (the resident level is kept then, and
+// update() caps the ground near the nadir instead).
+Standing standingLevel(const Source& elevation, TileProvider& provider, const Camera& camera,
+                       int resident, int blendLevel, int fallback) {
     const ElevationQuery query(elevation, provider);
     std::vector<int> candidates;
     for (int level = resident; level >= blendLevel && level >= 0; --level) {
@@ -46,10 +59,10 @@ int standingLevel(const Source& elevation, TileProvider& provider, const Camera&
         Result<std::optional<double>> ground = query.readyGroundHeight(
             camera.geodetic.latitude, camera.geodetic.longitude, level, level);
         if (ground && ground.value() && *ground.value() < camera.geodetic.height) {
-            return level;
+            return {level, *ground.value()};
         }
     }
-    return -1;
+    return {};
 }
 
 }  // namespace
@@ -303,10 +316,14 @@ Result<LevelRange> TerrainRenderer::update(
         resident = fallback;  // rings drawn without blending: one level is enough
     }
     statistics_.residentLevel = resident;
+    statistics_.nadirGround.reset();
+    nadirCeiling_.reset();
     if (rooted && resident >= 0) {
-        const int standing =
-            standingLevel(*layers.elevation, provider, camera, resident, blendLevel, fallback);
-        resident = standing >= 0 ? standing : resident;
+        resident = standOrCap(*layers.elevation, provider, camera, resident, blendLevel, fallback);
+    }
+    statistics_.nadirCeiling.reset();
+    if (nadirCeiling_) {
+        statistics_.nadirCeiling = nadirCeiling_->height;
     }
     // Rooted: every wanted ring is drawn, those finer than the resident level sampling it
     // (no blend). The ring mesh near the nadir stays fine, so its surface there is the
@@ -323,6 +340,24 @@ Result<LevelRange> TerrainRenderer::update(
     statistics_.updateSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return drawn;
+}
+
+int TerrainRenderer::standOrCap(const Source& elevation, TileProvider& provider,
+                                const Camera& camera, int resident, int blendLevel, int fallback) {
+    const Standing standing =
+        standingLevel(elevation, provider, camera, resident, blendLevel, fallback);
+    // No resident level's ground is (clearly) below the camera: an aircraft over a valley
+    // that the coarse levels, averaging its ridges, fill above it. Drawn as is, that
+    // surface lies over the camera near the nadir and rays looking down pass under it to
+    // the sky; the ceiling lowers it there (terrain.vert, uNadirCeiling).
+    const double ceiling = camera.geodetic.height - kNadirCeilingMargin;
+    if (standing.level < 0 || standing.ground > ceiling) {
+        nadirCeiling_ = NadirCeiling{ceiling, camera.geodetic.latitude, camera.geodetic.longitude};
+        statistics_.nadirGround = ceiling;
+    } else {
+        statistics_.nadirGround = standing.ground;
+    }
+    return standing.level >= 0 ? standing.level : resident;
 }
 
 void TerrainRenderer::draw(const Camera& camera, const glm::dmat4& projection,
@@ -389,9 +424,15 @@ std::optional<std::uint64_t> TerrainRenderer::shadowCacheKey(const ShadowView& v
     // levels' own spacing, which is no finer than the cascade's texels (shadowLevels).
     // A camera moving within the box's cell thus keeps the terrain's depth
     // (docs/architecture.md, sun shadows; tested by ShadowTest.SmallCameraSteps*).
+    // The nadir ceiling (update()) reshapes the ground around the camera's nadir: while it
+    // is on, the depth depends on its height and on that nadir.
     ContentHash hash;
     hash.add(levels->coarsest).add(levels->finest).add(textureCeiling_).add(lastOcean_);
     hash.add(sourceHashes_[0]);
+    hash.add(nadirCeiling_.has_value());
+    if (nadirCeiling_) {
+        hash.add(nadirCeiling_->height).add(nadirCeiling_->latitude).add(nadirCeiling_->longitude);
+    }
     return hash.value();
 }
 
@@ -418,6 +459,8 @@ std::uint64_t TerrainRenderer::drawRings(ShaderProgram& program, const Camera& c
     program.setFloat("uRingStep", float(std::exp2(1.0 / settings_.ringsPerLevel) - 1.0));
     program.setFloat("uBearingStep", float(2.0 * std::numbers::pi / settings_.columns));
     program.setInt("uHeight", 0);
+    program.setInt("uNadirCeilingOn", nadirCeiling_ ? 1 : 0);
+    program.setFloat("uNadirCeiling", nadirCeiling_ ? float(nadirCeiling_->height) : 0.0f);
     for (const auto& [clipmap, name] : {std::pair{height_.get(), "uHeightLevels[0]"},
                                         std::pair{normals_.get(), "uDetailLevels[0]"}}) {
         std::vector<glm::vec4> levelUniforms(kMaxClipmapLevels, glm::vec4(0.0f));

@@ -28,6 +28,16 @@ uniform float uBearingStep;     // 2 pi / columns (radians)
 // this is ignored there). The clip distance is interpolated linearly across a triangle
 // while the distance is convex, so a clipped point is nearer than this: conservative.
 uniform float uClipInside;
+// Interactive frames whose camera is below the ground of every resident clipmap level
+// (an aircraft over a valley that the coarse levels, averaging the ridges around it, fill
+// higher than the camera; TerrainRenderer::update): every vertex's height is capped at
+// uNadirCeiling (ellipsoid height, metres, a little under the camera) at the nadir, rising
+// 1:10 with the distance from it, so the ground drawn near the camera is below the eye and
+// rays looking down meet it instead of passing under the coarse surface to the sky (the
+// viewer bench's `frames_with_holes`, issue 20). Terrain farther than ten times the
+// coarse ground's excess over the ceiling is untouched.
+uniform bool uNadirCeilingOn;
+uniform float uNadirCeiling;
 
 layout(location = 0) out vec4 vDetailCoordinate;  // xy: detail level i, zw: level i - 1
 layout(location = 1) out float vBlend;
@@ -70,6 +80,13 @@ void main() {
     float radialStep = theta * uRingStep;
     float bearingArc = sin(theta) * uBearingStep;
     height += WGS84_A * (radialStep * radialStep + bearingArc * bearingArc) * 0.125;
+    // A function of the view angle alone, like the lift: shared vertices stay shared. The
+    // heights are along each vertex's own ellipsoid normal, so the capped surface curves
+    // away under the camera's horizontal plane besides rising 1:10 (theta R is the
+    // distance along the ground).
+    if (uNadirCeilingOn) {
+        height = min(height, uNadirCeiling + 0.1 * WGS84_A * theta);
+    }
 
     vec3 position = uMeridianToView * ecefOffset(offset, height) + uGroundToCamera;
     vHeightCoordinate = vec4(fine, coarse);

@@ -70,6 +70,19 @@ struct TerrainFrameStatistics {
     // on textureLevel instead, a walker on a hill stood under every finer level's ground
     // and textureLevel never rose (issue 20, the bench's "level 8 of 24").
     int residentLevel = -1;
+    // Interactive frames whose camera is below the ground of every resident level (an
+    // aircraft over a valley the coarse levels fill higher; issue 20's holes): the nadir
+    // ceiling, metres (ellipsoid height) a little under the camera, at which the ground at
+    // the nadir is capped, the cap rising 1:10 with the distance from it (terrain.vert).
+    // None when the drawn ground under the camera is below it.
+    std::optional<double> nadirCeiling;
+    // Interactive frames: the ground drawn at the nadir, metres (ellipsoid height): the
+    // textureLevel's, or the nadir ceiling; at least 1 m under the camera. The nadir probe
+    // that sets the clearance (SceneRenderer::readyGround) may come from a finer level far
+    // below it, so the near plane has to respect this one too (a 6.9 m near plane over
+    // ground drawn 1.7 m under the camera showed the sky; the bench's descent, issue 20).
+    // None for batch frames and unrooted renderers.
+    std::optional<double> nadirGround;
     std::uint64_t triangles = 0;
     std::uint64_t uploadedBytes = 0;
     double updateSeconds = 0;  // CPU clipmap update including tile evaluation
@@ -96,7 +109,9 @@ public:
     // depend on thread timing. Interactive (`waitForAll` false): nothing is waited for
     // but the resident root level (TerrainSettings::residentLevel); every wanted ring is
     // drawn, those finer than the finest resident level (statistics().textureLevel, at
-    // most one whose ground under the camera is below it) from that level. Returns the
+    // most one whose ground under the camera is below it) from that level; when no resident
+    // level's ground is below the camera, the ground near the nadir is capped under it
+    // instead (statistics().nadirCeiling). Returns the
     // levels to draw (statistics().degraded says why fewer on error; empty, finest <
     // coarsest, only without a root), or the error when not even the coarsest level
     // could be made.
@@ -117,10 +132,12 @@ public:
     // G-buffer's. Draws every cascade, the terrain-only one included.
     void drawShadow(const ShadowView& view) override;
     // The state drawShadow's depth depends on besides the cascade's box and the sun: the
-    // levels it draws, the resident level, the height source and the ocean clamp. Not the
-    // camera: the rings follow it, but around any camera in the box they triangulate the
-    // same heightfield (the clipmap holds the source's tiles) at the same levels, no finer
-    // than the cascade's texels, so a moving camera keeps the depth until its box moves.
+    // levels it draws, the resident level, the height source, the ocean clamp and the nadir
+    // ceiling (with its nadir: while it is on, a moving camera redraws the terrain's
+    // cascades). Not the camera otherwise: the rings follow it, but around any camera in
+    // the box they triangulate the same heightfield (the clipmap holds the source's tiles)
+    // at the same levels, no finer than the cascade's texels, so a moving camera keeps the
+    // depth until its box moves.
     std::optional<std::uint64_t> shadowCacheKey(const ShadowView& view) const override;
 
     const TerrainFrameStatistics& statistics() const { return statistics_; }
@@ -155,6 +172,11 @@ private:
     // or the update's error; `pending` says some tile is still being produced.
     Status bringUpLevel(int level, const LevelWindows& windows, TileProvider& provider, bool wait,
                         ReadyTiles& ready, bool& pending);
+    // Interactive frames: the level to draw near the nadir, the finest resident one whose
+    // ground under the camera is below it (standingLevel), else `resident`; sets
+    // nadirCeiling_ when no such level's ground is clearly below the camera.
+    int standOrCap(const Source& elevation, TileProvider& provider, const Camera& camera,
+                   int resident, int blendLevel, int fallback);
     // Drops the clipmap levels of layers whose source changed (another scenario, an edit).
     void dropChangedSources(const TerrainLayers& layers);
     // The levels drawShadow draws into `view`'s cascade (none before the first draw()).
@@ -177,6 +199,14 @@ private:
     ClipmapTexture colorTexture_;
     ClipmapTexture normalTexture_;
     int textureCeiling_ = 0;  // finest resident level of the last update (statistics)
+    // The last update's nadir ceiling (statistics().nadirCeiling) and the camera's nadir it
+    // is centred on (radians).
+    struct NadirCeiling {
+        double height = 0;  // metres, ellipsoid height
+        double latitude = 0;
+        double longitude = 0;
+    };
+    std::optional<NadirCeiling> nadirCeiling_;
     std::uint64_t sourceHashes_[3] = {0, 0, 0};  // height, normals, colour sources of the clipmaps
     bool hasColor_ = false;
     TerrainFrameStatistics statistics_;
