@@ -1,5 +1,6 @@
 // `sylva view PROJECT [--scenario S] [--camera C] [--size WxH] [--budget-ms N]
-//                     [--script FILE] [--gl glfw|egl|osmesa] [--cache-mb N] [-D name=value]`
+//                     [--script FILE] [--gl glfw|egl|osmesa] [--cache-mb N]
+//                     [--disk-cache DIR | --no-disk-cache] [--disk-cache-mb N] [-D name=value]`
 // The interactive viewer (docs/viewer.md): parses options, loads the script (a bad one is
 // a located error before anything opens) and the project (diagnostics and exit codes as
 // `render`), opens the window through render::BatchRenderer and hands over to
@@ -23,9 +24,12 @@ namespace {
 
 const char* kUsage =
     "usage: sylva view PROJECT [--scenario NAME] [--camera NAME] [--size WxH] [--budget-ms N]\n"
-    "                  [--script FILE] [--gl glfw|egl|osmesa] [--cache-mb N] [-D name=value]\n"
+    "                  [--script FILE] [--gl glfw|egl|osmesa] [--cache-mb N]\n"
+    "                  [--disk-cache DIR | --no-disk-cache] [--disk-cache-mb N] [-D name=value]\n"
     "  Opens a window (GLFW, needs an X display such as Xvfb); --gl egl|osmesa runs a\n"
-    "  --script headless. Keys and the script language: docs/viewer.md.";
+    "  --script headless. The disk tile cache is on by default, as for `sylva render`\n"
+    "  (a project viewed or rendered before comes up from it). Keys and the script\n"
+    "  language: docs/viewer.md.";
 
 // The project language for the viewer: reload and camera write-back.
 class CommandLineViewerHost final : public render::ViewerHost {
@@ -102,6 +106,16 @@ int parseRequest(const ParsedCommandLine& command, ViewRequest& request) {
             return 2;
         }
     }
+    if (Status disk =
+            diskCacheOptions(command, request.batch.diskCacheDisabled,
+                             request.batch.diskCacheFolder, request.batch.diskCacheMegabytes);
+        !disk) {
+        reportError(disk.error().message);
+        return 2;
+    }
+    // As `render`: tiles produced once (by a render, a farm or an earlier session) come
+    // from the disk, so a view comes up in seconds instead of re-producing every tile.
+    request.batch.diskCacheByDefault = true;
     request.viewer.budgetMilliseconds = budget.value().value_or(0);
     request.batch.cacheMegabytes = cache.value();
     request.batch.backend = backend.value().value_or(render::GlBackend::Glfw);
@@ -135,6 +149,9 @@ int runView(const std::vector<std::string>& arguments) {
                                                                    {"script"},
                                                                    {"gl"},
                                                                    {"cache-mb"},
+                                                                   {"disk-cache"},
+                                                                   {"disk-cache-mb"},
+                                                                   {"no-disk-cache", false},
                                                                    {"help", false}});
     if (command.has("help")) {
         std::puts(kUsage);

@@ -1,6 +1,7 @@
 // `sylva bench viewer [--json] [--project FILE] [--size WxH] [--budget-ms N] [--steps N]
-// [--still N] [--trace]`: the interactive viewer's frame budget on a scripted Olinda flight
-// (bench/ViewerBenchmark.h). Prints the metrics as JSON with --json, else one line each.
+// [--still N] [--trace] [--disk-cache DIR]`: the interactive viewer's frame budget on a scripted
+// Olinda flight (bench/ViewerBenchmark.h). Prints the metrics as JSON with --json, else one line
+// each.
 #include <cstdio>
 
 #include "CommandLine.h"
@@ -17,7 +18,8 @@ int runViewerBench(const std::vector<std::string>& arguments) {
                                                                    {"budget-ms"},
                                                                    {"steps"},
                                                                    {"still"},
-                                                                   {"trace", false}});
+                                                                   {"trace", false},
+                                                                   {"disk-cache"}});
     if (!command.error.empty() || !command.positional.empty()) {
         reportError(command.error.empty() ? "bench viewer takes no arguments" : command.error);
         return 2;
@@ -42,6 +44,9 @@ int runViewerBench(const std::vector<std::string>& arguments) {
         *target = value.value().value_or(*target);
     }
     options.budgetMilliseconds = budget;
+    if (std::optional<std::string> folder = command.get("disk-cache")) {
+        options.diskCache = *folder;  // cold on the first run into it, warm after
+    }
     if (command.has("trace")) {
         options.trace = stderr;  // one line per frame
     }

@@ -185,6 +185,8 @@ Result<ViewerBenchmarkResult> runViewerBenchmark(const ViewerBenchmarkOptions& o
     render::BatchOptions batchOptions;
     batchOptions.width = options.width;
     batchOptions.height = options.height;
+    batchOptions.diskCacheFolder = options.diskCache;
+    batchOptions.diskCacheDisabled = !options.diskCache;
     render::BatchRenderer batch(batchOptions);
     if (Status set = batch.setProject(std::move(models.value())); !set) {
         return set.error();

@@ -442,9 +442,14 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
     settleOnGround(waitForTiles);
     RenderSettings settings = setup_.settings;
     // A still view whose tiles were all drawn by the last frame is refined: drawn at full
-    // detail and resolution (not measured for the budget) until it changes again.
-    const bool refine = !waitForTiles && !dirty_ && !report_.pending &&
+    // detail and resolution (not measured for the budget) until it changes again. Full
+    // detail asks for tiles of its own (finer plants, a larger shadow map's casters); a
+    // refining view that has to wait for them stays refining — dropping back to the
+    // budget's level until they came, then refining again, was a quality reversal a
+    // still view must not show (issue 20's `quality_oscillations`).
+    const bool refine = !waitForTiles && !dirty_ && (!report_.pending || refining_) &&
                         options_.budgetMilliseconds > 0 && frames_ > 0;
+    refining_ = refine;
     const bool full = waitForTiles || refine;
     // Interactive frames past the vegetation's coarsest budget level draw fewer pixels
     // (FrameBudget::renderScale); the window enlarges them. Screenshots: the window's.

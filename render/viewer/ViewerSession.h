@@ -153,6 +153,9 @@ private:
     int width_ = 0;
     int height_ = 0;
     bool dirty_ = true;
+    // The last frame refined a still view (full detail); it goes on refining until the view
+    // changes, also while the tiles its full detail asked for arrive.
+    bool refining_ = false;
     bool reduced_ = false;  // the last frame was drawn below full quality (budget level > 0)
     Image image_;
     std::vector<float> depth_;  // of the last frame (picking)

@@ -19,6 +19,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "sylva/bench/BenchmarkMetrics.h"
@@ -34,6 +35,9 @@ struct ViewerBenchmarkOptions {
     int flightSteps = 12;   // frames per leg of the flight (descent, walk)
     int stillFrames = 30;   // frames after the stop (then on until full detail)
     FILE* trace = nullptr;  // one line per frame (time, ms, pending, levels, holes) if set
+    // The disk tile cache's folder (as `sylva view --disk-cache`); none: every tile is
+    // produced (a cold start). A second run with the same folder measures a warm one.
+    std::optional<std::filesystem::path> diskCache;
 };
 
 struct ViewerBenchmarkResult {
