@@ -495,7 +495,7 @@ Status SceneRenderer::prepareFarField(const TerrainLayers& layers, TileProvider&
     const double pixelAngle = 2.0 * std::tan(camera.verticalFov / 2) / settings.height;
     Result<FarFieldFrame> frame = farField_->update(
         layers, provider, camera, levels, statistics_.heightAboveTerrain, pixelAngle,
-        settings.vegetation, settings.farField, settings.waitForTiles);
+        settings.vegetation, settings.farField, settings.waitForTiles, settings.plantDate);
     if (!frame) {
         return frame.error();
     }
@@ -510,8 +510,7 @@ VegetationSettings SceneRenderer::drawFarField(const Camera& camera, const glm::
         return vegetation;
     }
     const auto start = std::chrono::steady_clock::now();
-    farField_->draw(camera, projection, near_, settings.width, settings.height, settings.ocean,
-                    settings.sunDirection);
+    farField_->draw(camera, projection, near_, settings.width, settings.height, settings.ocean);
     glFinish();  // only to time the pass
     statistics_.farFieldPassSeconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -19,10 +19,12 @@ struct FarFieldCanopy::Layers {
     std::unique_ptr<CanopyLayerSource> cover;
     std::unique_ptr<NormalMapSource> normals;
     std::vector<CanopyProfile> profiles;
-    double smallestSphereRadius = 0.0;  // metres
-    double tallest = 0.0;               // metres, largest profile height
-    double crownWidth = 0.0;            // metres, the tallest profile's
-    double ambientOcclusion = 1.0;
+    std::vector<std::vector<Phenology>> phenology;  // per profile: its species' tables
+    double smallestSphereRadius = 0.0;              // metres
+    double tallest = 0.0;                           // metres, largest profile height
+    // The tallest profile's: the shader's crowns, tone and occlusion are one stand's (the
+    // tallest wins the CEM where stands overlap).
+    std::size_t dominant = 0;
 };
 
 Result<std::unique_ptr<FarFieldCanopy>> FarFieldCanopy::create(const ShaderLibrary& library,
@@ -107,10 +109,10 @@ Result<const FarFieldCanopy::Layers*> FarFieldCanopy::layersFor(const TerrainLay
         out->smallestSphereRadius = std::min(out->smallestSphereRadius, p.smallestSphereRadius());
         if (p.height() > out->tallest) {
             out->tallest = p.height();
-            out->crownWidth = p.crownWidth();
+            out->dominant = out->profiles.size();
         }
-        out->ambientOcclusion = p.ambientOcclusion();
         out->profiles.push_back(p);
+        out->phenology.push_back(plants->phenology());
     }
     if (!stands.empty()) {
         out->elevation = std::make_unique<CanopyLayerSource>(
@@ -129,7 +131,8 @@ Result<FarFieldFrame> FarFieldCanopy::update(const TerrainLayers& layers, TilePr
                                              const Camera& camera, const LevelRange& terrainLevels,
                                              double heightAboveTerrain, double pixelAngle,
                                              const VegetationSettings& vegetation,
-                                             const FarFieldSettings& settings, bool waitForTiles) {
+                                             const FarFieldSettings& settings, bool waitForTiles,
+                                             const std::optional<PlantDate>& date) {
     frame_ = {};
     settings_ = settings;
     current_ = nullptr;
@@ -181,7 +184,33 @@ Result<FarFieldFrame> FarFieldCanopy::update(const TerrainLayers& layers, TilePr
     frame_.waiting = rings_->statistics().waitingLevel >= 0;
     frame_.drawn = frame_.levels.finest >= frame_.levels.coarsest;
     current_ = &canopy;
+    updateCrowns(canopy, date, camera.geodetic.latitude);
     return frame_;
+}
+
+void FarFieldCanopy::updateCrowns(const Layers& canopy, const std::optional<PlantDate>& date,
+                                  double latitude) {
+    // The leaf states as leafStates() gives them to the drawn trees: the plants source's
+    // table per species at the render date and the camera's latitude; full leaf without
+    // a date.
+    const std::vector<Phenology>& tables = canopy.phenology[canopy.dominant];
+    std::vector<LeafState> states(tables.size());
+    if (date) {
+        for (std::size_t i = 0; i < tables.size(); ++i) {
+            states[i] = tables[i].at(*date, latitude);
+        }
+    }
+    const auto same = [](const LeafState& a, const LeafState& b) {
+        return a.leafFraction == b.leafFraction && a.autumn == b.autumn &&
+               a.autumnColour == b.autumnColour;
+    };
+    if (crownsOf_ == &canopy && states.size() == crownStates_.size() &&
+        std::equal(states.begin(), states.end(), crownStates_.begin(), same)) {
+        return;
+    }
+    crowns_ = canopy.profiles[canopy.dominant].crowns(states);
+    crownStates_ = std::move(states);
+    crownsOf_ = &canopy;
 }
 
 FarFieldFade FarFieldCanopy::fade() const {
@@ -192,19 +221,28 @@ FarFieldFade FarFieldCanopy::fade() const {
 }
 
 void FarFieldCanopy::draw(const Camera& camera, const glm::dmat4& projection, double near,
-                          int width, int height, bool ocean, const glm::dvec3& sunDirection) {
+                          int width, int height, bool ocean) {
     if (!frame_.drawn || current_ == nullptr) {
         return;
     }
+    const CanopyProfile& profile = current_->profiles[current_->dominant];
     ShaderProgram& program = rings_->gbufferProgram();
     fade().apply(program, projection, near, width, height);
     program.setFloat("uMinimumCover", float(settings_.minimumCover));
-    program.setFloat("uAmbientOcclusion", float(current_->ambientOcclusion));
-    program.setVec3("uSunView", glm::vec3(glm::normalize(camera.viewRotation() * sunDirection)));
-    // The crowns' depth is taken as half the top height (the LoD stores no crown base);
-    // it only sets how fast the seen cover grows towards the horizon.
-    program.setVec3("uCrown", glm::vec3(float(current_->crownWidth), float(0.5 * current_->tallest),
-                                        float(CanopyProfile::kSightDepth)));
+    program.setFloat("uAmbientOcclusion", float(profile.ambientOcclusion()));
+    // The stored albedo is the full-leaf leaf-area mean; the crowns show their own colour
+    // on the date (autumn, and the opaque-area weighting of what a line of sight meets).
+    glm::dvec3 tone(1.0);
+    for (int c = 0; c < 3; ++c) {
+        if (profile.albedo()[c] > 1e-6) {
+            tone[c] = crowns_.albedo[c] / profile.albedo()[c];
+        }
+    }
+    program.setVec3("uTone", glm::vec3(tone));
+    program.setVec4("uCrown",
+                    glm::vec4(float(profile.crownWidth()), float(crowns_.topOpaqueArea),
+                              float(crowns_.sideOpaqueArea), float(CanopyProfile::kSightDepth)));
+    program.setFloat("uCrownOpacity", float(crowns_.sideOpaqueFraction));
     // Nearer than the fade start every canopy fragment would be discarded by the
     // hand-over (fade 0); clipping the rings there spares the rasteriser and the fragment
     // shader the fill disk overhead (at canopy height, so it passes the depth test over

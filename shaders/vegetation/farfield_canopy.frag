@@ -5,23 +5,26 @@
 // slot of the rings); inside the instance distance the screen-door hand-over gives the
 // pixel to the trees.
 //
-// Looking like the forest it continues (docs/architecture.md, "Far-field canopy"):
-//  - Gaps. The stored cover is the opacity of 100 m of stand seen side-on; the cover
-//    along this pixel's ray is that of the crowns' Boolean model (CanopyProfile) with
-//    the ray's slope: optical depth n w (pi w / 4 + h tan(zenith)), so from above the
-//    ground between the crowns shows as it does between the drawn trees. The pixel is
-//    kept with that probability (crown cells where they cover two pixels or more, else
-//    a per-pixel dither uncorrelated with the hand-over's Bayer matrix); the rest
-//    discards to the terrain drawn before. Edges of the forest are thereby dithered
-//    over the bilinear cover, not texel squares.
-//  - Crowns. Where a crown cell (the crown width, a power of two of the clipmap texel
-//    so cells nest across levels) covers two pixels or more, each cell is a round crown
-//    with a hemispherical normal and the corners between crowns are shaded understorey;
-//    farther away, where the ShadingPass cannot see those normals, the albedo is scaled
-//    by the mean shading of such a crown relative to the flat canopy surface (clamped
-//    to darken only): the crowns' self-shadowing.
+// Looking like the trees it continues (docs/architecture.md, "Far-field canopy"): what the
+// drawn trees show at the hand-over on the render date is the crowns of their coarsest
+// LoD level in the species' leaf states (CanopyProfile::crowns, CrownSilhouette), given
+// here as opaque projected areas per instance (uCrown.y from above, uCrown.z from the
+// side) and a tone (uTone: their colour over the stored full-leaf albedo).
+//  - Gaps. The stored cover is the opacity of 100 m of stand seen side-on, i.e. n w per
+//    metre; the cover along this pixel's ray is the Boolean model's with partly
+//    transparent crowns, 1 − exp(−n (A_top + A_side tan(zenith))) (A the opaque areas:
+//    leaf-off crowns have none, so a winter view shows the terrain). The rest discards to
+//    the terrain drawn before; forest edges dither over the bilinear cover.
+//  - Crowns. Where a crown cell (a power of two of the clipmap texel near the crown width,
+//    so cells nest across levels) spans two pixels or more, a cell holds one crown (a
+//    disc of the crown's width, jittered in the cell) that is present, and within it
+//    opaque, in the proportions that give the same cover; farther away each pixel is
+//    kept by a per-pixel dither. Either way a kept pixel is a point on a crown facing the
+//    viewer (uniform over the crown's projected disc, as the ray-cast ellipsoids' hits),
+//    so the shading pass shades the far field as it shades the drawn trees. No analytic
+//    self-shadowing: it darkened the far field against the trees at the hand-over.
 //  - Variation. Crown cells vary in brightness by ±12 %, and a world-anchored value
-//    noise over the clipmap texels by ±8 % everywhere.
+//    noise over the clipmap texels by ±8 % everywhere (both mean 1).
 #include "farfield_fade.glsl"
 #include "../terrain/clipmap.glsl"
 
@@ -37,8 +40,11 @@ uniform int uTextureLevel;  // the clipmap level sampled (terrain.vert)
 uniform mat3 uEcefToView;
 uniform float uMinimumCover;      // below about this (side-on) the terrain is left to show
 uniform float uAmbientOcclusion;  // the species' mean (G-buffer alpha, like the trees)
-uniform vec3 uSunView;            // direction to the sun, view space (unit)
-uniform vec3 uCrown;              // x: crown width (m), y: crown depth (m), z: sight depth (m)
+uniform vec3 uTone;               // the crowns' colour on the date over the stored albedo
+// x: crown width (m), y: opaque area from above (m²), z: opaque area from the side (m²),
+// w: the stored cover's sight depth (m)
+uniform vec4 uCrown;
+uniform float uCrownOpacity;  // opaque share of a crown's outline seen from the side
 
 layout(location = 0) out vec4 outAlbedo;
 layout(location = 1) out vec4 outNormal;
@@ -76,22 +82,35 @@ float texelNoise(vec2 texel) {
     return mix(a, b, f.y);
 }
 
-// Mean of max(0, n·sun) over a hemispherical crown seen from above, relative to the
-// flat canopy's max(0, normal·sun): sixteen normals of the cap (equal projected area).
-float crownSelfShadowing(vec3 normal, vec3 tangent, vec3 bitangent) {
-    float flatShading = max(dot(normal, uSunView), 0.0);
-    if (flatShading <= 1e-3) {
-        return 1.0;
+// A point of a crown facing the viewer at disc position d (|d| <= 1) in the frame
+// (right, down) across the unit direction to the eye.
+vec3 crownNormal(vec2 d, vec3 right, vec3 down, vec3 toEye) {
+    d /= max(length(d), 1.0);
+    return normalize(d.x * right + d.y * down + sqrt(max(1.0 - dot(d, d), 0.0)) * toEye);
+}
+
+// A point of a crown's disc (x across, y down, |d| <= 1) that a line of sight reaches
+// through the stand, from two uniform values. Nearer crowns hide a crown's lower part: a
+// point whose disc area above it is a share u of the disc is seen with probability
+// exp(−S u) (S = n A_side tan(zenith): the expected opaque crowns between it and the
+// eye, per unit of that share), so u is exponential truncated to [0, 1]; u = share above
+// height z (acos z − z √(1 − z²)) / π is inverted by Newton steps. At the drawn stand's
+// grazing views the visible crown points are its sunlit, sky-lit tops, as here.
+vec2 visibleCrownPoint(float a, float b, float S) {
+    float u = S > 1e-3 ? -log(1.0 - a * (1.0 - exp(-S))) / S : a;
+    float z = 1.0 - 2.0 * u;
+    for (int k = 0; k < 4; ++k) {
+        float c = sqrt(max(1.0 - z * z, 1e-4));
+        float f = (acos(clamp(z, -1.0, 1.0)) - z * c) / 3.14159265 - u;
+        z = clamp(z + f * 3.14159265 / (2.0 * c), -1.0, 1.0);
     }
-    float sum = 0.0;
-    for (int k = 0; k < 16; ++k) {
-        float r = sqrt((float(k >> 2) + 0.5) / 4.0);
-        float a = (float(k & 3) + 0.5 + 0.5 * float(k >> 2)) * 1.5707963;
-        vec2 d = r * vec2(cos(a), sin(a));
-        vec3 n = d.x * tangent + d.y * bitangent + sqrt(max(1.0 - dot(d, d), 0.0)) * normal;
-        sum += max(dot(n, uSunView), 0.0);
-    }
-    return min(sum / 16.0 / flatShading, 1.0);
+    return vec2(sqrt(max(1.0 - z * z, 0.0)) * (2.0 * b - 1.0), -z);
+}
+
+// A uniform point of the unit disc from two uniform values.
+vec2 discPoint(float a, float b) {
+    float angle = 6.2831853 * b;
+    return sqrt(a) * vec2(cos(angle), sin(angle));
 }
 
 void main() {
@@ -120,10 +139,11 @@ void main() {
     vec3 toEye = normalize(-position);
 
     // Cover along this ray: the side-on cover gives n w per metre of path.
-    float lineDensity = -log(max(1.0 - cover.a, 1e-6)) / uCrown.z;
+    float lineDensity = -log(max(1.0 - cover.a, 1e-6)) / uCrown.w;
+    float stems = lineDensity / max(uCrown.x, 1e-3);  // per m²
     float cosZenith = clamp(dot(toEye, normal), 0.02, 1.0);
     float tanZenith = sqrt(1.0 - cosZenith * cosZenith) / cosZenith;
-    float seen = 1.0 - exp(-lineDensity * (0.785398 * uCrown.x + uCrown.y * tanZenith));
+    float seen = 1.0 - exp(-stems * (uCrown.y + uCrown.z * tanZenith));
 
     // Crown cells: the crown width rounded to the level's texel by a power of two.
     vec2 texel = vDetailCoordinate.xy * uClipmapSize;
@@ -141,29 +161,51 @@ void main() {
     vec3 tangent = cross(dp2, normal) * duv1.x + cross(normal, dp1) * duv2.x;
     tangent = normalize(tangent - normal * dot(normal, tangent) + 1e-12);
     vec3 bitangent = -cross(normal, tangent);  // v runs south in the clipmap
+    // The cell's axes across the line of sight (foreshortening removed): a crown point's
+    // disc position maps to a normal facing the viewer with the crown's own orientation
+    // (its sunward side where the sun is).
+    vec3 right = tangent - toEye * dot(toEye, tangent);
+    right = length(right) > 1e-4 ? normalize(right) : normalize(cross(toEye, normal) + 1e-12);
+    vec3 down = bitangent - toEye * dot(toEye, bitangent);
+    down = length(down) > 1e-4 ? normalize(down) : cross(right, toEye);
 
     float brightness = 1.0 + 0.16 * (texelNoise(texel) - 0.5);
-    vec3 shaded = normal;
-    float occlusion = uAmbientOcclusion;
-    bool crowns = cellPixels >= 2.0;
-    if (crowns) {
-        if (unitHash(cell, 1u) >= seen) {
-            discard;  // a gap between crowns: the terrain shows
-        }
-        vec2 local = 2.0 * (fract(cellCoordinate) - 0.5);  // [-1, 1] across the cell
+    vec2 disc;
+    if (cellPixels >= 2.0) {
+        // One crown per cell: a disc of the crown's width (at most the cell), jittered.
+        float cellMetres = texelMetres / cellsPerTexel;
+        float radius = min(0.5 * uCrown.x / cellMetres, 0.5);  // cell units
+        vec2 centre = 0.5 + (0.5 - radius) * (2.0 * vec2(unitHash(cell, 3u), unitHash(cell, 4u)) - 1.0);
+        vec2 local = (fract(cellCoordinate) - centre) / radius;  // the disc: |local| <= 1
+        float inDisc = 3.14159265 * radius * radius;             // share of the cell
+        // Opaque share of a crown's outline as the drawn crowns show it (side view);
+        // present crowns, opaque crown points and the corners between the crowns make
+        // up the same cover as the per-pixel dither farther away.
+        float opaque = clamp(uCrownOpacity, 0.05, 1.0);
+        float present = min(seen / (inDisc * opaque), 1.0);
+        float inside = present < 1.0 ? opaque : min(seen / inDisc, 1.0);
+        float corners = clamp((seen - inDisc) / max(1.0 - inDisc, 1e-3), 0.0, 1.0);
         float r2 = dot(local, local);
-        brightness *= 0.88 + 0.24 * unitHash(cell, 2u);
-        if (r2 < 1.0) {
-            shaded = normalize(local.x * tangent + local.y * bitangent + sqrt(1.0 - r2) * normal);
-        } else {
-            occlusion *= 0.6;  // between the crowns, lower in the canopy
+        float keep = unitHash(cell, 1u) < present ? (r2 < 1.0 ? inside : corners) : 0.0;
+        if (pixelNoise() >= keep) {
+            discard;  // a gap between or in the crowns: the terrain shows
         }
+        brightness *= 0.88 + 0.24 * unitHash(cell, 2u);
+        disc = r2 < 1.0 ? local : discPoint(unitHash(uvec2(gl_FragCoord.xy), 5u),
+                                            unitHash(uvec2(gl_FragCoord.xy), 6u));
     } else {
         if (pixelNoise() >= seen) {
             discard;
         }
-        brightness *= crownSelfShadowing(normal, tangent, bitangent);
+        // Here the crowns' frame is the line of sight's: "down" the ground normal's
+        // opposite across the ray, where the nearer crowns are.
+        vec3 level = normal - toEye * dot(toEye, normal);
+        down = length(level) > 1e-4 ? -normalize(level) : down;
+        right = normalize(cross(down, toEye));
+        float occluding = stems * uCrown.z * tanZenith;
+        disc = visibleCrownPoint(unitHash(uvec2(gl_FragCoord.xy), 5u),
+                                 unitHash(uvec2(gl_FragCoord.xy), 6u), occluding);
     }
-    outAlbedo = vec4(cover.rgb * brightness, occlusion);
-    outNormal = vec4(shaded, 2.0);  // material 2: leaves (shade.frag)
+    outAlbedo = vec4(cover.rgb * uTone * brightness, uAmbientOcclusion);
+    outNormal = vec4(crownNormal(disc, right, down, toEye), 2.0);  // material 2: leaves
 }

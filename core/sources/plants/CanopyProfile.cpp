@@ -37,6 +37,8 @@ Result<CanopySpecies> CanopyProfile::species(const PlantLod& lod) {
     }
     out.albedo = albedo / weight;
     out.ambientOcclusion = occlusion / weight;
+    out.crown = CrownSilhouette::coarsestLevel(lod);
+    out.leafLuminance = CrownSilhouette::leafLuminance(lod);
     return out;
 }
 
@@ -71,12 +73,42 @@ Result<CanopyProfile> CanopyProfile::make(const PlantsParameters& parameters,
                                                  species[i].sphereRadius * parameters.scaleMinimum);
     }
     profile.stemsPerSquareMetre_ = parameters.perHectare / 1.0e4;
+    profile.species_ = species;
+    for (const auto& entry : parameters.species) {
+        profile.shares_.push_back(entry.second / total);
+    }
+    // Scales are drawn uniformly in [a, b]: E[s²] = (a² + ab + b²) / 3.
+    const double a = parameters.scaleMinimum, b = parameters.scaleMaximum;
+    profile.meanSquareScale_ = (a * a + a * b + b * b) / 3.0;
     return profile;
 }
 
 double CanopyProfile::cover(double density) const {
     const double n = std::clamp(density, 0.0, 1.0) * stemsPerSquareMetre_;
     return 1.0 - std::exp(-n * crownWidth_ * kSightDepth);
+}
+
+}  // namespace sylva
+
+namespace sylva {
+
+CanopyCrowns CanopyProfile::crowns(const std::vector<LeafState>& states) const {
+    CanopyCrowns out;
+    glm::dvec3 color(0.0);
+    double weight = 0.0;
+    for (std::size_t i = 0; i < species_.size(); ++i) {
+        const LeafState state = i < states.size() ? states[i] : LeafState{};
+        out.species.push_back(
+            CrownSilhouette::of(species_[i].crown, state, species_[i].leafLuminance));
+        const CrownSilhouette& crown = out.species.back();
+        out.topOpaqueArea += shares_[i] * meanSquareScale_ * crown.topOpaqueArea();
+        out.sideOpaqueArea += shares_[i] * meanSquareScale_ * crown.sideOpaqueArea();
+        out.sideOpaqueFraction += shares_[i] * crown.sideOpaqueFraction();
+        color += shares_[i] * crown.sideOpaqueArea() * crown.albedo();
+        weight += shares_[i] * crown.sideOpaqueArea();
+    }
+    out.albedo = weight > 0.0 ? color / weight : albedo_;
+    return out;
 }
 
 }  // namespace sylva

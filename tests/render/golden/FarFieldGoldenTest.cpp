@@ -3,7 +3,9 @@
 // generated oak species. Goldens at 3 km (trees), 10 km and 30 km (canopy); the canopy's
 // silhouette against the bare ridge's, in pixels, against the analytic canopy height
 // (CanopyProfile) projected through the same camera; and a dolly across the instance
-// distance whose per-frame image change has no spike above the vegetation dolly's bound.
+// distance whose per-frame image change has no spike above the vegetation dolly's bound;
+// no band at the hand-over (cover, tone and texture of the drawn trees just inside the
+// instance distance against the canopy's just outside) and the canopy in the seasons.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -141,10 +144,11 @@ protected:
         return render(layers_, c, width, height, band);
     }
     static Image render(const TerrainLayers& layers, const Camera& c, int width, int height,
-                        double band) {
+                        double band, std::optional<PlantDate> date = std::nullopt) {
         Result<RenderSetup> setup = RenderSetup::fromModel(*model_, width, height);
         EXPECT_TRUE(setup) << setup.error().message;
         RenderSettings settings = setup.value().settings;
+        settings.plantDate = date;
         settings.sunDirection =
             glm::normalize(Ellipsoid::surfaceNormal(47.0 * kDegree - 0.5, 8.0 * kDegree + 0.4));
         settings.farField.band = band;
@@ -342,6 +346,157 @@ TEST_F(FarFieldGolden, DollyAcrossTheInstanceDistanceHasNoPopping) {
     // enters over four frames, a ramp rather than a spike, so its spike is no larger.
     EXPECT_GT(canopyBeyond, 0.3) << "the canopy does not show the stand beyond D";
     EXPECT_LT(nothingBeyond, 0.05) << "trees drawn beyond the instance distance";
+}
+
+// Per-pixel statistics of a forest render against the bare terrain's (same camera) in a
+// band of distances from the camera (from the bare render's depth, so both renders are
+// compared on the same pixels).
+struct BandStatistics {
+    int pixels = 0;
+    double cover = 0.0;      // share of pixels the forest changes (luminance by > 6 of 255)
+    double darkening = 0.0;  // mean luminance bare − forest over all pixels (8-bit)
+    double tone = 0.0;       // mean luminance of the changed pixels (8-bit)
+    double texture = 0.0;    // mean |luminance step| between horizontal neighbours in the forest
+};
+
+double luminance(const Image& image, std::size_t pixel) {
+    const std::uint8_t* p = &image.pixels[pixel * 4];
+    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+}
+
+std::vector<double> distances(const std::vector<float>& depth, double near, int width, int height,
+                              double fov) {
+    std::vector<double> out(depth.size(), 0.0);
+    const double t = std::tan(fov / 2.0), aspect = double(width) / height;
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t i = std::size_t(y) * width + x;
+            if (depth[i] <= 0.0f) {
+                continue;
+            }
+            const double sx = ((x + 0.5) / width * 2.0 - 1.0) * t * aspect;
+            const double sy = (1.0 - (y + 0.5) / height * 2.0) * t;
+            out[i] = near / depth[i] * std::sqrt(1.0 + sx * sx + sy * sy);
+        }
+    }
+    return out;
+}
+
+BandStatistics bandStatistics(const Image& forest, const Image& bare,
+                              const std::vector<double>& distance, int width, double from,
+                              double to) {
+    BandStatistics s;
+    int changed = 0, steps = 0;
+    for (std::size_t i = 0; i < distance.size(); ++i) {
+        if (distance[i] < from || distance[i] >= to) {
+            continue;
+        }
+        ++s.pixels;
+        const double f = luminance(forest, i), b = luminance(bare, i);
+        s.darkening += b - f;
+        if (std::abs(f - b) > 6.0) {
+            ++changed;
+            s.tone += f;
+        }
+        if ((i + 1) % std::size_t(width) != 0) {
+            s.texture += std::abs(luminance(forest, i + 1) - f);
+            ++steps;
+        }
+    }
+    if (s.pixels > 0) {
+        s.cover = double(changed) / s.pixels;
+        s.darkening /= s.pixels;
+    }
+    s.tone = changed > 0 ? s.tone / changed : 0.0;
+    s.texture = steps > 0 ? s.texture / steps : 0.0;
+    return s;
+}
+
+// From an aircraft over the plain, the forest of the ridge's south slope (full cover
+// above 650 m) crosses the instance distance: the drawn trees just inside it and the
+// canopy just outside must look alike. Measured against the bare terrain's render on the
+// same pixels: cover (share of pixels the forest changes), tone (mean luminance of those),
+// darkening (mean change over all pixels: what an eye sees as a band) and texture (mean
+// luminance step between neighbouring pixels). The old far field (flat normals with an
+// analytic self-shadowing, no crown points) failed it: a smooth, lighter band (texture
+// 0.7 against the trees' 16.7, tone +5, darkening −18 %).
+TEST_F(FarFieldGolden, HandOverShowsNoBand) {
+    constexpr int kWidth = 480, kHeight = 270;
+    const double fov = 20.0 * kDegree;
+    Camera c = camera(6500.0, -9.0 * kDegree, fov);
+    c.geodetic.height = 1500.0;
+    c.position = Ellipsoid::toEcef(c.geodetic);
+    c.axes = Camera::axesFromAngles(c.geodetic, 0.0, -9.0 * kDegree, 0.0);
+    TerrainLayers bareLayers = layers_;
+    bareLayers.plants.clear();
+    const Image bare = render(bareLayers, c, kWidth, kHeight, 500.0);
+    const std::vector<double> distance =
+        distances(renderer_->depth(), renderer_->near(), kWidth, kHeight, fov);
+    const Image forest = render(layers_, c, kWidth, kHeight, 500.0);
+    const FarFieldFrame frame = renderer_->statistics().farField;
+    ASSERT_TRUE(frame.drawn);
+    if (std::getenv("SYLVA_HANDOVER_DUMP") != nullptr) {
+        (void)ImageWriter::writeRgba8(
+            std::filesystem::temp_directory_path() / "handover_forest.png", kWidth, kHeight,
+            forest.pixels);
+        (void)ImageWriter::writeRgba8(std::filesystem::temp_directory_path() / "handover_bare.png",
+                                      kWidth, kHeight, bare.pixels);
+    }
+    constexpr double kBin = 400.0;
+    const BandStatistics trees =
+        bandStatistics(forest, bare, distance, kWidth, frame.fadeStart - kBin, frame.fadeStart);
+    const BandStatistics canopy =
+        bandStatistics(forest, bare, distance, kWidth, frame.fadeEnd, frame.fadeEnd + kBin);
+    // Each side's own change over the next bin outwards: the step a band must not exceed.
+    const BandStatistics nearerTrees = bandStatistics(
+        forest, bare, distance, kWidth, frame.fadeStart - 2 * kBin, frame.fadeStart - kBin);
+    const BandStatistics fartherCanopy = bandStatistics(
+        forest, bare, distance, kWidth, frame.fadeEnd + kBin, frame.fadeEnd + 2 * kBin);
+    const auto print = [](const char* name, const BandStatistics& s) {
+        std::printf("  %-15s %6d px  cover %.3f  tone %6.2f  darkening %6.2f  texture %5.2f\n",
+                    name, s.pixels, s.cover, s.tone, s.darkening, s.texture);
+    };
+    std::printf("hand-over: trees to %.0f m, fade %.0f..%.0f m\n", frame.instanceDistance,
+                frame.fadeStart, frame.fadeEnd);
+    print("trees (nearer)", nearerTrees);
+    print("trees", trees);
+    print("canopy", canopy);
+    print("canopy (farther)", fartherCanopy);
+    ASSERT_GT(trees.pixels, 500);
+    ASSERT_GT(canopy.pixels, 500);
+    ASSERT_GT(trees.cover, 0.1) << "no forest drawn inside the instance distance";
+    // Bounds about twice each side's own change over the next bin (tone 1.0 and 2.1,
+    // darkening 2 % and 7 %). Measured 2026-12-06: trees tone 71.7, darkening 29.7,
+    // texture 16.7; canopy 72.9, 27.2, 15.6 (the old far field: 76.8, 24.4, 0.7).
+    EXPECT_NEAR(canopy.cover / trees.cover, 1.0, 0.15) << "cover step at the hand-over";
+    EXPECT_NEAR(canopy.tone, trees.tone, 4.0) << "tone step at the hand-over";
+    EXPECT_NEAR(canopy.darkening / trees.darkening, 1.0, 0.15) << "band at the hand-over";
+    EXPECT_NEAR(canopy.texture / trees.texture, 1.0, 0.3) << "texture step at the hand-over";
+}
+
+// Far-field cover in January, May and July at 47°N (the oak is deciduous): the canopy
+// follows the drawn trees' leaf states (none in winter), not a fixed green.
+TEST_F(FarFieldGolden, CanopyFollowsTheSeasons) {
+    constexpr int kWidth = 320, kHeight = 180;
+    const double distance = 10000.0;
+    const double fov = 30.0 * kDegree * 3000.0 / distance;
+    const Camera c = camera(distance, std::atan(kRidgeHeight / distance) * 0.7, fov);
+    TerrainLayers bareLayers = layers_;
+    bareLayers.plants.clear();
+    const Image bare = render(bareLayers, c, kWidth, kHeight, 500.0);
+    std::vector<double> cover;
+    for (const int month : {1, 5, 7}) {
+        const Image image =
+            render(layers_, c, kWidth, kHeight, 500.0, PlantDate::make(2027, month, 15).value());
+        ASSERT_TRUE(renderer_->statistics().farField.drawn);
+        std::vector<double> all(std::size_t(kWidth) * kHeight, 1.0);
+        cover.push_back(bandStatistics(image, bare, all, kWidth, 0.0, 2.0).cover);
+        std::printf("month %d: far-field cover %.1f %% of the image\n", month,
+                    100.0 * cover.back());
+    }
+    EXPECT_LT(cover[0], 0.2 * cover[2]) << "January (leaf-off) as covered as July";
+    EXPECT_GT(cover[2], 0.02) << "no canopy in July";
+    EXPECT_LE(cover[1], cover[2] * 1.05) << "May (leafing out) more covered than July";
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "sylva/core/scheduler/TileEvaluator.h"
 #include "sylva/core/sources/plants/CanopyLayerSource.h"
@@ -73,6 +74,61 @@ TEST(CanopyProfile, HeightAndCoverFromDensityAndShares) {
     }
     EXPECT_EQ(p.cover(-1.0), 0.0);
     EXPECT_EQ(p.cover(3.0), p.cover(1.0));
+}
+
+// The stand's crowns in leaf states: share- and scale²-weighted opaque areas of the
+// species' coarsest levels, the colour weighted by what each shows from the side.
+TEST(CanopyProfile, CrownsInALeafState) {
+    PlantLod deciduous = lodOf(10.0f, 2.0f, {0.1f, 0.4f, 0.1f});
+    for (LodEllipsoid& e : deciduous.ellipsoids) {
+        e.center = {0.0f, 0.0f, 6.0f};
+        e.radii = glm::vec3(2.0f);
+        e.alphaThreshold = 0.6f;
+    }
+    deciduous.ellipsoids.resize(1);  // one coarse sphere (level 2)
+    PlantLod evergreen = deciduous;
+    evergreen.ellipsoids[0].color = {0.05f, 0.2f, 0.05f};
+    evergreen.ellipsoids[0].radii = glm::vec3(1.0f);
+    Result<CanopySpecies> a = CanopyProfile::species(deciduous);
+    Result<CanopySpecies> b = CanopyProfile::species(evergreen);
+    ASSERT_TRUE(a && b);
+    EXPECT_EQ(a.value().crown.size(), 1u);
+    PlantsParameters parameters;
+    parameters.perHectare = 100.0;
+    parameters.scaleMinimum = 0.5;
+    parameters.scaleMaximum = 1.5;  // E[s²] = (0.25 + 0.75 + 2.25) / 3
+    parameters.species = {{"a", 3.0}, {"b", 1.0}};
+    const CanopyProfile profile = CanopyProfile::make(parameters, {a.value(), b.value()}).value();
+    const double scale2 = (0.25 + 0.75 + 2.25) / 3.0, opacity = 1.0 - 0.36;
+    const double discA = std::numbers::pi * 4.0, discB = std::numbers::pi;
+
+    const CanopyCrowns summer = profile.crowns({});  // no states: full leaf
+    ASSERT_EQ(summer.species.size(), 2u);
+    const double full = scale2 * opacity * (0.75 * discA + 0.25 * discB);
+    EXPECT_NEAR(summer.topOpaqueArea, full, 0.01 * full);
+    EXPECT_NEAR(summer.sideOpaqueArea, full, 0.01 * full);
+    EXPECT_NEAR(summer.sideOpaqueFraction, opacity, 0.01);
+    const double greenSummer =
+        (0.75 * discA * 0.4 + 0.25 * discB * 0.2) / (0.75 * discA + 0.25 * discB);
+    EXPECT_NEAR(summer.albedo.g, greenSummer, 0.005);
+
+    LeafState winter;
+    winter.leafFraction = 0.0f;
+    const CanopyCrowns january = profile.crowns({winter, LeafState{}});
+    const double evergreenOnly = scale2 * opacity * 0.25 * discB;
+    EXPECT_NEAR(january.topOpaqueArea, evergreenOnly, 0.01 * evergreenOnly);
+    EXPECT_NEAR(january.albedo.g, 0.2, 1e-4);  // only the evergreen shows
+    EXPECT_EQ(january.species[0].sideOpaqueArea(), 0.0);
+
+    LeafState spring;
+    spring.leafFraction = 0.5f;
+    const CanopyCrowns may = profile.crowns({spring, LeafState{}});
+    const double half = scale2 * opacity * (0.75 * 0.5 * discA + 0.25 * discB);
+    EXPECT_NEAR(may.sideOpaqueArea, half, 0.01 * half);
+    // Leaf-off everywhere: nothing opaque, the albedo falls back to the full-leaf one.
+    const CanopyCrowns bare = profile.crowns({winter, winter});
+    EXPECT_EQ(bare.sideOpaqueArea, 0.0);
+    EXPECT_EQ(bare.albedo, profile.albedo());
 }
 
 TEST(CanopyProfile, Errors) {

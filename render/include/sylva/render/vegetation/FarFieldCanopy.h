@@ -23,10 +23,16 @@
 // same screen-door pattern the trees fade out with (FarFieldFade), so each pixel of the
 // band shows exactly one of them.
 //
-// Look: the shader keeps a pixel with the cover along its ray (the Boolean crown model of
-// CanopyProfile with the ray's slope; gaps show the terrain), draws round crowns where a
-// crown cell spans two pixels and darkens by the crowns' self-shadowing farther away
-// (farfield_canopy.frag; docs/architecture.md).
+// Look: what the drawn trees show at the hand-over, on the render date. The crowns of the
+// stand's coarsest LoD level in the species' leaf states (CanopyProfile::crowns, the
+// phenology of each plants source at the date and the camera's latitude) give the opaque
+// area a crown shows from above and from the side and the colour it shows; the shader
+// keeps a pixel with the stand's cover along its ray from those areas (gaps show the
+// terrain; January's leaf-off deciduous stand shows none), tints the stored full-leaf
+// albedo to the crowns' colour, and gives each kept pixel the normal of a point on a crown
+// facing the viewer, as the ray-cast ellipsoids do (no analytic self-shadowing: the
+// shading pass shades those normals as it shades the trees' own). farfield_canopy.frag;
+// docs/architecture.md.
 //
 // Not a shadow caster: the canopy casts no sun shadows (the near field would be shadowed
 // by canopy that is not drawn there); it receives them through the shading pass.
@@ -35,12 +41,15 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "sylva/core/base/Result.h"
 #include "sylva/core/scene/Camera.h"
+#include "sylva/core/seasons/PlantDate.h"
 #include "sylva/core/sources/Source.h"
 #include "sylva/core/sources/graph/SourceGraph.h"
+#include "sylva/core/sources/plants/CanopyProfile.h"
 #include "sylva/render/gl/ShaderLibrary.h"
 #include "sylva/render/terrain/TerrainRenderer.h"
 #include "sylva/render/vegetation/FarFieldFade.h"
@@ -74,32 +83,42 @@ public:
     // vegetation settings the trees are drawn with) and the canopy clipmaps of the
     // levels beyond the hand-over start within `terrainLevels`. Nothing is drawn when
     // there are no plants with a density mask, no instance distance or band is 0.
+    // `date` (none: full leaf) and the camera's latitude set the species' leaf states
+    // (the same as the drawn trees'); the crowns are re-evaluated only when they change.
     // Fails when a plant model cannot be built or a tile fails.
     Result<FarFieldFrame> update(const TerrainLayers& layers, TileProvider& provider,
                                  const Camera& camera, const LevelRange& terrainLevels,
                                  double heightAboveTerrain, double pixelAngle,
                                  const VegetationSettings& vegetation,
-                                 const FarFieldSettings& settings, bool waitForTiles);
+                                 const FarFieldSettings& settings, bool waitForTiles,
+                                 const std::optional<PlantDate>& date = std::nullopt);
+
+    // The crowns the canopy shows this frame (valid when the frame is drawn).
+    const CanopyCrowns& crowns() const { return crowns_; }
 
     // The fade both sides of the hand-over use this frame (disabled when not drawn).
     FarFieldFade fade() const;
 
     // Draws the canopy into the bound G-buffer after the terrain (reversed-Z
-    // `projection` with near plane `near`, width × height pixels); `sunDirection` (ECEF,
-    // towards the sun) sets the crowns' self-shadowing where they are under two pixels.
+    // `projection` with near plane `near`, width × height pixels).
     void draw(const Camera& camera, const glm::dmat4& projection, double near, int width,
-              int height, bool ocean, const glm::dvec3& sunDirection);
+              int height, bool ocean);
 
 private:
     FarFieldCanopy() = default;
     struct Layers;  // the canopy sources of one scenario
     Result<const Layers*> layersFor(const TerrainLayers& layers);
+    void updateCrowns(const Layers& canopy, const std::optional<PlantDate>& date, double latitude);
 
     std::unique_ptr<TerrainRenderer> rings_;
     std::map<std::uint64_t, std::unique_ptr<Layers>> built_;  // kept: workers may hold them
     const Layers* current_ = nullptr;
     FarFieldFrame frame_;
     FarFieldSettings settings_;
+    // The crowns of current_'s dominant stand in crownStates_ (re-evaluated on change).
+    const Layers* crownsOf_ = nullptr;
+    std::vector<LeafState> crownStates_;
+    CanopyCrowns crowns_;
 };
 
 }  // namespace sylva::render

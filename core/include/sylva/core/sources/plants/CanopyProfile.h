@@ -12,7 +12,11 @@
 //    its top height unless it is very sparse; the cover scales the height down only there;
 //  - canopy height above the ground = H × cover, in metres.
 // The albedo (linear RGB) and ambient occlusion are the leaf-area-weighted means of each
-// species' coarsest ellipsoid level, which is what the drawn trees show at the hand-over.
+// species' coarsest ellipsoid level; they are stored in the canopy's tiles (full leaf).
+// What the drawn trees show at the hand-over on a given date is crowns(): each species'
+// CrownSilhouette in its leaf state (opaque areas seen from above and from the side and
+// the colour they show), which the far-field shader uses for its gaps and tone, so the
+// seasons change the far field without new tiles.
 //
 // Pure CPU data; make() fails (naming the plants source) when a species' LoD has no
 // extent or no ellipsoids, or the source scatters no species (points only).
@@ -25,6 +29,8 @@
 
 #include "sylva/core/base/Result.h"
 #include "sylva/core/plantlod/PlantLod.h"
+#include "sylva/core/seasons/Phenology.h"
+#include "sylva/core/sources/plants/CrownSilhouette.h"
 #include "sylva/core/sources/plants/PlantsSource.h"
 
 namespace sylva {
@@ -36,6 +42,22 @@ struct CanopySpecies {
     double sphereRadius = 0.0;  // half the bounds' diagonal (the selector's culling sphere)
     glm::dvec3 albedo{0.0};     // linear RGB of the coarsest ellipsoids, leaf-area weighted
     double ambientOcclusion = 1.0;
+    std::vector<LodEllipsoid> crown;  // the coarsest level's ellipsoids (CrownSilhouette)
+    double leafLuminance = 0.1;       // CrownSilhouette::leafLuminance (autumn colour)
+};
+
+// The stand's crowns in one set of leaf states (CanopyProfile::crowns).
+struct CanopyCrowns {
+    std::vector<CrownSilhouette> species;  // unit scale, indexed like the profile's species
+    // Share-weighted opaque projected areas of one instance at the scatter's scales (mean
+    // of scale²), m²: from above and from the side (CrownSilhouette).
+    double topOpaqueArea = 0.0;
+    double sideOpaqueArea = 0.0;
+    // Share-weighted opaque share of a crown's side outline, [0, 1].
+    double sideOpaqueFraction = 0.0;
+    // Share- and side-opaque-area-weighted colour the crowns show (linear RGB); the full-
+    // leaf profile albedo when nothing is opaque (leaf-off: the shader shows no canopy).
+    glm::dvec3 albedo{0.0};
 };
 
 class CanopyProfile {
@@ -57,6 +79,11 @@ public:
     // Canopy height above the ground (metres) where the density mask is `density`.
     double canopyHeight(double density) const { return height_ * cover(density); }
 
+    // The crowns in the species' leaf states (indexed like the species given to make();
+    // missing entries are full leaf). Costs a few projections of the coarsest level per
+    // species: evaluate once per date, not per frame.
+    CanopyCrowns crowns(const std::vector<LeafState>& states) const;
+
     double height() const { return height_; }                            // H, metres
     double crownWidth() const { return crownWidth_; }                    // w, metres
     double stemsPerSquareMetre() const { return stemsPerSquareMetre_; }  // at density 1
@@ -73,6 +100,9 @@ private:
     double smallestSphereRadius_ = 0.0;
     glm::dvec3 albedo_{0.0};
     double ambientOcclusion_ = 1.0;
+    std::vector<CanopySpecies> species_;
+    std::vector<double> shares_;    // normalised
+    double meanSquareScale_ = 1.0;  // E[scale²] of a uniform scale
 };
 
 }  // namespace sylva
