@@ -543,6 +543,7 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
             frame.pending = report_.pending;
             frame.moved = moved;
             frame.budgetLevel = level;
+            frame.refined = refine;
             frame.instancesDrawn = report_.instancesDrawn;
             frame.levelsDrawn = report_.levelsDrawn;
             frame.levelsWanted = report_.levelsWanted;

@@ -57,6 +57,9 @@ struct ViewerFrame {
     bool pending = false;     // wanted tiles were still being produced
     bool moved = false;       // the view changed since the previous frame
     int budgetLevel = 0;      // FrameBudget level used (0 = full detail)
+    // A still view's refinement at full detail and resolution: not chosen by the budget
+    // (docs/viewer.md, "Frame budget"), drawn while the view stays still.
+    bool refined = false;
     std::size_t instancesDrawn = 0;
     int levelsDrawn = 0;          // finest terrain ring level drawn
     int levelsWanted = 0;         // finest terrain ring level the view wants
