@@ -23,6 +23,8 @@ mkdir -p "$SCRATCH"
 SCRATCH=$(cd "$SCRATCH" && pwd)
 # shellcheck source=lib.sh
 source "$TESTS/app/lib.sh"
+# Never the user's cache: the disk tile cache is on by default ($SYLVA_CACHE_DIR/tiles).
+export SYLVA_CACHE_DIR=$SCRATCH/cache-home
 
 # copy_fixture DIR: the viewer test project and flight script in DIR.
 copy_fixture() {
@@ -73,6 +75,21 @@ run view "$SCRATCH/egl/viewer.sylva" --gl egl --size 320x180 --script "$SCRATCH/
 expect_rc 0
 expect_stdout "screenshot: $SCRATCH/egl/flown.png  320x180"
 expect_stdout "saved camera 'flown'"
+[ -n "$(find "$SCRATCH/cache-home/tiles" -type f 2>/dev/null | head -1)" ] ||
+    fail "the viewer wrote no tiles into the default disk tile cache"
+end
+
+begin "--no-disk-cache: the viewer writes no disk tiles; a bad --disk-cache-mb is a usage error"
+copy_fixture "$SCRATCH/nodisk"
+run view "$SCRATCH/nodisk/viewer.sylva" --gl egl --size 320x180 --disk-cache-mb 1 \
+    --script "$SCRATCH/nodisk/flight.script"
+expect_rc 2
+expect_stderr "--disk-cache-mb expects a disk tile cache budget in MiB within 64..1000000000"
+SYLVA_CACHE_DIR=$SCRATCH/nodisk/cache-home run view "$SCRATCH/nodisk/viewer.sylva" --gl egl \
+    --size 320x180 --no-disk-cache --script "$SCRATCH/nodisk/flight.script"
+expect_rc 0
+[ -z "$(find "$SCRATCH/nodisk/cache-home" -type f 2>/dev/null | head -1)" ] ||
+    fail "tiles written to the disk cache despite --no-disk-cache"
 end
 
 # The window: an Xvfb server of our own on a free display number.
