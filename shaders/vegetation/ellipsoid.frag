@@ -63,21 +63,36 @@ void main() {
     if (footprint > 0.0) {
         cells = min(cells, exp2(floor(log2(max(1.0 / footprint, 1.0)))));
     }
+    // The seed comes from the ellipsoid's centre in the model, so every instance of a
+    // species shares its pattern. With the level's cells that is harmless (each crown
+    // still shows many cells); once capped, a cell spans much of the ellipsoid and the
+    // shared pattern decided it for every tree alike: at one cell the coarse levels'
+    // perforated ellipsoids were missing from every tree of the species, and the front
+    // and back hits shared one test (opacity 1 − t, not 1 − t²), so stands of one- and
+    // two-pixel trees showed about half their cover (the band at 2–6 km in the demo's
+    // `lookout`, docs/benchmarks.md, vegetation). Capped, each instance (its dither
+    // bits) draws its own pattern and the back hit its own test.
+    uint frontSeed = vSeedDither.x;
+    uint backSeed = frontSeed;
+    if (cells < vFadeNoise.z) {
+        frontSeed ^= vSeedDither.y * 0x9E3779B9u;
+        backSeed = frontSeed ^ 0x5BD1E995u;
+    }
     q = clamp(q, -1.0, 1.0);
-    if (vFadeNoise.w > 0.0 && ellipsoidNoise(q, cells, vSeedDither.x) < vFadeNoise.w) {
+    if (vFadeNoise.w > 0.0 && ellipsoidNoise(q, cells, frontSeed) < vFadeNoise.w) {
         // Perforated front: the ray goes on to the back of the ellipsoid, which the noise
         // tests again (as PrimitiveRasterizer, whose images calibrated the level's
         // threshold and scale: a ray through the crown meets two layers, opacity 1 − t²
         // where one test gave 1 − t and coarse levels drew ~60 % of their coverage).
         q = clamp(closest + back * localDirection, -1.0, 1.0);
         t = along + back;
-        if (ellipsoidNoise(q, cells, vSeedDither.x) < vFadeNoise.w) {
+        if (ellipsoidNoise(q, cells, backSeed) < vFadeNoise.w) {
             discard;
         }
     }
     vec3 hit = start * (1.0 + t);
     gl_FragDepth = uNear / max(-hit.z, uNear);
-    vec3 perturb = ellipsoidNoise3(q, cells, vSeedDither.x ^ 0x68E31DA4u) - 0.5;
+    vec3 perturb = ellipsoidNoise3(q, cells, frontSeed ^ 0x68E31DA4u) - 0.5;
     vec3 normal = normalize(transpose(vToLocal) * normalize(q + uNormalNoise * perturb));
     if (dot(normal, hit) > 0.0) {
         normal = -normal;
