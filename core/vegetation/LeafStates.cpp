@@ -2,6 +2,17 @@
 
 namespace sylva {
 
+std::vector<LeafState> leafStatesOf(const std::vector<Phenology>& tables,
+                                    const std::optional<PlantDate>& date, double latitude) {
+    std::vector<LeafState> states(tables.size());
+    if (date) {
+        for (std::size_t i = 0; i < tables.size(); ++i) {
+            states[i] = tables[i].at(*date, latitude);
+        }
+    }
+    return states;
+}
+
 std::vector<LeafState> leafStates(const std::vector<VegetationStreamLayer>& layers,
                                   std::size_t speciesCount, const std::optional<PlantDate>& date,
                                   double latitude) {
@@ -11,13 +22,14 @@ std::vector<LeafState> leafStates(const std::vector<VegetationStreamLayer>& laye
     }
     std::vector<bool> done(speciesCount, false);
     for (const VegetationStreamLayer& layer : layers) {
-        const std::vector<Phenology>& tables = layer.source->phenology();
-        for (std::size_t i = 0; i < layer.species.size() && i < tables.size(); ++i) {
+        const std::vector<LeafState> layerStates =
+            leafStatesOf(layer.source->phenology(), date, latitude);
+        for (std::size_t i = 0; i < layer.species.size() && i < layerStates.size(); ++i) {
             const int species = layer.species[i];
             if (species < 0 || std::size_t(species) >= speciesCount || done[species]) {
                 continue;
             }
-            states[species] = tables[i].at(*date, latitude);
+            states[species] = layerStates[i];
             done[species] = true;
         }
     }

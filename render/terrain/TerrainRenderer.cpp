@@ -321,10 +321,6 @@ Result<LevelRange> TerrainRenderer::update(
     if (rooted && resident >= 0) {
         resident = standOrCap(*layers.elevation, provider, camera, resident, blendLevel, fallback);
     }
-    statistics_.nadirCeiling.reset();
-    if (nadirCeiling_) {
-        statistics_.nadirCeiling = nadirCeiling_->height;
-    }
     // Rooted: every wanted ring is drawn, those finer than the resident level sampling it
     // (no blend). The ring mesh near the nadir stays fine, so its surface there is the
     // bilinear ground standingLevel checked (a coarse fill disk's big flat triangles
@@ -340,6 +336,14 @@ Result<LevelRange> TerrainRenderer::update(
     statistics_.updateSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return drawn;
+}
+
+TerrainFrameStatistics TerrainRenderer::statistics() const {
+    TerrainFrameStatistics statistics = statistics_;
+    if (nadirCeiling_) {
+        statistics.nadirCeiling = nadirCeiling_->height;
+    }
+    return statistics;
 }
 
 int TerrainRenderer::standOrCap(const Source& elevation, TileProvider& provider,

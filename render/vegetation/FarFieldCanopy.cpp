@@ -11,6 +11,7 @@
 #include "sylva/core/sources/plants/PlantModelSource.h"
 #include "sylva/core/sources/plants/PlantsSource.h"
 #include "sylva/core/sources/raster/NormalMapSource.h"
+#include "sylva/core/vegetation/LeafStates.h"
 
 namespace sylva::render {
 
@@ -193,13 +194,7 @@ void FarFieldCanopy::updateCrowns(const Layers& canopy, const std::optional<Plan
     // The leaf states as leafStates() gives them to the drawn trees: the plants source's
     // table per species at the render date and the camera's latitude; full leaf without
     // a date.
-    const std::vector<Phenology>& tables = canopy.phenology[canopy.dominant];
-    std::vector<LeafState> states(tables.size());
-    if (date) {
-        for (std::size_t i = 0; i < tables.size(); ++i) {
-            states[i] = tables[i].at(*date, latitude);
-        }
-    }
+    std::vector<LeafState> states = leafStatesOf(canopy.phenology[canopy.dominant], date, latitude);
     const auto same = [](const LeafState& a, const LeafState& b) {
         return a.leafFraction == b.leafFraction && a.autumn == b.autumn &&
                a.autumnColour == b.autumnColour;

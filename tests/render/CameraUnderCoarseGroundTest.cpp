@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "SceneRenderSupport.h"
 #include "sylva/core/base/Hash.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/scheduler/TileEvaluator.h"
@@ -82,22 +83,8 @@ private:
     TileEvaluator evaluator_{TileFormat{256, 2}};
 };
 
-class CameraUnderCoarseGround : public ::testing::Test {
+class CameraUnderCoarseGround : public SceneRenderFixture {
 protected:
-    void SetUp() override {
-        Result<std::unique_ptr<GlContext>> created = GlContext::create({});
-        ASSERT_TRUE(created) << created.error().message;
-        context_ = std::move(created.value());
-        Result<std::unique_ptr<SceneRenderer>> renderer =
-            SceneRenderer::create(ShaderLibrary(), TerrainSettings{});
-        ASSERT_TRUE(renderer) << renderer.error().message;
-        renderer_ = std::move(renderer.value());
-    }
-    void TearDown() override {
-        renderer_.reset();
-        context_.reset();
-    }
-
     static Camera camera(double height, double pitchDegrees) {
         Camera c;
         // Not on a tile border at any level (the nadir tile of holdNadir is one tile).
@@ -124,45 +111,13 @@ protected:
         }
     }
 
-    struct HoleCount {
-        int deepRays = 0;  // rays passing more than kHoleDepth under the ellipsoid
-        int holes = 0;     // of those, pixels showing sky
-    };
-    // As the viewer bench counts them (bench/ViewerBenchmark.cpp): sky pixels whose ray
-    // passes more than 50 m under the ellipsoid (made a sphere by scaling z). The true
-    // ground is the ellipsoid here, so every such ray is below the horizon.
+    // The true ground is the ellipsoid here, so every ray the count calls deep is below the
+    // horizon.
     HoleCount countHoles(const Camera& c) const {
-        constexpr double kHoleDepth = 50.0;
-        const std::vector<float> depth = renderer_->depth();
-        const double scale = Ellipsoid::kSemiMajorAxis / Ellipsoid::kSemiMinorAxis;
-        const glm::dvec3 origin(c.position.x, c.position.y, c.position.z * scale);
-        const double inner = Ellipsoid::kSemiMajorAxis - kHoleDepth;
-        const double tanHalf = std::tan(c.verticalFov / 2);
-        const double aspect = double(kWidth) / kHeight;
-        HoleCount count;
-        for (int y = 0; y < kHeight; ++y) {
-            for (int x = 0; x < kWidth; ++x) {
-                const glm::dvec3 view(((x + 0.5) / kWidth * 2 - 1) * tanHalf * aspect,
-                                      (1 - (y + 0.5) / kHeight * 2) * tanHalf, -1.0);
-                glm::dvec3 direction = c.axes * glm::normalize(view);
-                direction.z *= scale;
-                const double qa = glm::dot(direction, direction);
-                const double qb = 2.0 * glm::dot(origin, direction);
-                const double qc = glm::dot(origin, origin) - inner * inner;
-                const double discriminant = qb * qb - 4 * qa * qc;
-                if (discriminant < 0.0 || -qb - std::sqrt(discriminant) <= 0.0) {
-                    continue;  // the ray (not the line behind the camera) stays above
-                }
-                ++count.deepRays;
-                count.holes += depth[std::size_t(y) * kWidth + x] <= 0.0f ? 1 : 0;
-            }
-        }
-        return count;
+        return render::countHoles(c, renderer_->depth(), kWidth, kHeight);
     }
 
     static constexpr int kWidth = 320, kHeight = 180;
-    std::unique_ptr<GlContext> context_;
-    std::unique_ptr<SceneRenderer> renderer_;
     ValleyElevation elevation_;
     NormalMapSource normals_{"valley.normals", &elevation_, 1.0};
     SlowFineTiles tiles_;

@@ -162,12 +162,9 @@ Result<TilePointer> BlendSource::produce(const TileKey& key, TileProvider& provi
     if (std::optional<Error> error = fetchWeightInputs(key, provider, in)) {
         return *error;
     }
-    const std::vector<double> weights = texelWeights(in, key, provider.format());
-    const bool anyOver =
-        std::any_of(weights.begin(), weights.end(), [](double w) { return w > 0; });
-    const bool replacesAll =
-        parameters_.mode == BlendMode::Normal &&
-        std::all_of(weights.begin(), weights.end(), [](double w) { return w >= 1.0; });
+    const TexelWeights weights = texelWeights(in, key, provider.format());
+    const bool anyOver = weights.highest > 0;
+    const bool replacesAll = parameters_.mode == BlendMode::Normal && weights.lowest >= 1.0;
     for (auto [source, slot, needed] :
          {std::tuple{base_, &in.base, !replacesAll}, std::tuple{over_, &in.over, anyOver}}) {
         if (!needed || *slot) {
@@ -220,13 +217,14 @@ std::optional<Error> BlendSource::fetchWeightInputs(const TileKey& key, TileProv
     return std::nullopt;
 }
 
-std::vector<double> BlendSource::texelWeights(const Inputs& in, const TileKey& key,
-                                              const TileFormat& format) const {
-    const int border = format.border, side = format.size + 2 * border;
-    std::vector<double> weights(std::size_t(side) * side, wholeOrClamped(parameters_.opacity));
+BlendSource::TexelWeights BlendSource::texelWeights(const Inputs& in, const TileKey& key,
+                                                    const TileFormat& format) const {
     if (!in.coverage && !in.mask) {
-        return weights;  // the opacity alone
+        const double opacity = wholeOrClamped(parameters_.opacity);
+        return {{}, opacity, opacity};  // the opacity alone
     }
+    const int border = format.border, side = format.size + 2 * border;
+    std::vector<double> weights(std::size_t(side) * side);
     // The texel grid of the output tile (every input shares the key's grid).
     const ImageTile& grid = in.coverage ? *in.coverage : *in.mask;
     SYLVA_CHECK(grid.key() == key && grid.size() == format.size && grid.border() == border);
@@ -249,15 +247,16 @@ std::vector<double> BlendSource::texelWeights(const Inputs& in, const TileKey& k
             weights[std::size_t(iy + border) * side + (ix + border)] = wholeOrClamped(w);
         }
     }
-    return weights;
+    const auto [lowest, highest] = std::ranges::minmax(weights);
+    return {std::move(weights), lowest, highest};
 }
 
-void BlendSource::blendTexels(const ImageTile& over, const std::vector<double>& weights,
+void BlendSource::blendTexels(const ImageTile& over, const TexelWeights& weights,
                               ImageTile& tile) const {
     const int border = tile.border(), size = tile.size(), side = size + 2 * border;
     for (int iy = -border; iy < size + border; ++iy) {
         for (int ix = -border; ix < size + border; ++ix) {
-            const double w = weights[std::size_t(iy + border) * side + (ix + border)];
+            const double w = weights.at(std::size_t(iy + border) * side + (ix + border));
             if (w <= 0.0) {
                 continue;
             }

@@ -15,6 +15,13 @@
 
 namespace sylva {
 
+// One per table, in order: tables[i].at(*date, latitude) (`latitude` in radians); without
+// a date every entry is full leaf (LeafState{}). Never fails. The far-field canopy
+// (render/vegetation/FarFieldCanopy) evaluates its dominant source's tables with it, so
+// its crowns take the season the drawn trees take.
+std::vector<LeafState> leafStatesOf(const std::vector<Phenology>& tables,
+                                    const std::optional<PlantDate>& date, double latitude);
+
 // Per renderer species (0 … speciesCount − 1). Without a date every species is in full
 // leaf (LeafState{}); a species no layer draws too. `latitude` in radians.
 std::vector<LeafState> leafStates(const std::vector<VegetationStreamLayer>& layers,

@@ -140,7 +140,9 @@ public:
     // depth until its box moves.
     std::optional<std::uint64_t> shadowCacheKey(const ShadowView& view) const override;
 
-    const TerrainFrameStatistics& statistics() const { return statistics_; }
+    // By value: nadirCeiling is read from the ceiling draw() and shadowCacheKey() use, so
+    // the report cannot disagree with what is drawn.
+    TerrainFrameStatistics statistics() const;
     const TerrainSettings& settings() const { return settings_; }
     // The G-buffer program (fragmentShader), for a derived pass's own uniforms.
     ShaderProgram& gbufferProgram() { return program_; }
@@ -209,7 +211,7 @@ private:
     std::optional<NadirCeiling> nadirCeiling_;
     std::uint64_t sourceHashes_[3] = {0, 0, 0};  // height, normals, colour sources of the clipmaps
     bool hasColor_ = false;
-    TerrainFrameStatistics statistics_;
+    TerrainFrameStatistics statistics_;  // all but nadirCeiling (statistics() adds it)
     std::uint64_t uploadedBefore_ = 0;
 };
 

@@ -58,15 +58,22 @@ public:
 
 private:
     struct Inputs;
+    // Per texel (border included, row-major) weight in [0, 1], snapped to 1 within 1e-9,
+    // with the lowest and highest. Without a mask and a coverage the opacity alone decides:
+    // `texels` is then empty (no (size + 2 border)^2 vector per tile) and every texel has
+    // the weight `lowest` (= `highest`).
+    struct TexelWeights {
+        std::vector<double> texels;
+        double lowest = 0, highest = 0;
+        double at(std::size_t texel) const { return texels.empty() ? lowest : texels[texel]; }
+    };
     // Reads the mask, the over-source's coverage and the feather's coarse coverage.
     std::optional<Error> fetchWeightInputs(const TileKey& key, TileProvider& provider,
                                            Inputs& in) const;
-    // Per texel (border included, row-major) weight in [0, 1], snapped to 1 within 1e-9.
-    std::vector<double> texelWeights(const Inputs& in, const TileKey& key,
-                                     const TileFormat& format) const;
+    // The weights of the key's texels, from the opacity and the inputs fetchWeightInputs read.
+    TexelWeights texelWeights(const Inputs& in, const TileKey& key, const TileFormat& format) const;
     // Blends `over` into `tile` (a copy of the base) by the weights.
-    void blendTexels(const ImageTile& over, const std::vector<double>& weights,
-                     ImageTile& tile) const;
+    void blendTexels(const ImageTile& over, const TexelWeights& weights, ImageTile& tile) const;
 
     const Source* base_;
     const Source* over_;
