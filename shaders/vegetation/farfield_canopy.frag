@@ -17,12 +17,13 @@
 //    the terrain drawn before; forest edges dither over the bilinear cover.
 //  - Crowns. Where a crown cell (a power of two of the clipmap texel near the crown width,
 //    so cells nest across levels) spans two pixels or more, a cell holds one crown (a
-//    disc of the crown's width, jittered in the cell) that is present, and within it
-//    opaque, in the proportions that give the same cover; farther away each pixel is
-//    kept by a per-pixel dither. Either way a kept pixel is a point on a crown facing the
-//    viewer (uniform over the crown's projected disc, as the ray-cast ellipsoids' hits),
-//    so the shading pass shades the far field as it shades the drawn trees. No analytic
-//    self-shadowing: it darkened the far field against the trees at the hand-over.
+//    disc of the crown's width, anywhere in the cell, reaching into its neighbours) that
+//    is present, and within it opaque, in the proportions that give the same cover;
+//    farther away each pixel is kept by a per-pixel dither. Either way a kept pixel is a
+//    point on a crown facing the viewer (uniform over the crown's projected disc, as the
+//    ray-cast ellipsoids' hits), so the shading pass shades the far field as it shades
+//    the drawn trees. No analytic self-shadowing: it darkened the far field against the
+//    trees at the hand-over.
 //  - Variation. Crown cells vary in brightness by ±12 %, and a world-anchored value
 //    noise over the clipmap texels by ±8 % everywhere (both mean 1).
 #include "farfield_fade.glsl"
@@ -65,10 +66,12 @@ float unitHash(uvec2 v, uint salt) {
     return float(hash(v + uvec2(salt * 0x9e37u, salt)) >> 8) / 16777216.0;
 }
 
-// Interleaved gradient noise (Jimenez 2014): a per-pixel threshold in [0, 1) with no
-// structure in common with the 4×4 Bayer matrix of the hand-over.
+// A per-pixel threshold in [0, 1): white noise (a hash of the pixel), with no structure
+// in common with the 4×4 Bayer matrix of the hand-over. Interleaved gradient noise
+// (Jimenez 2014), used first, is a lattice: kept at a thin cover (a forest seen from
+// above, 10–20 %) its pixels lined up in rows of dots, visible from the demo's aircraft.
 float pixelNoise() {
-    return fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+    return unitHash(uvec2(gl_FragCoord.xy), 9u);
 }
 
 // Bilinear value noise over the level's texels, world-anchored (toroidal texel indices).
@@ -150,7 +153,6 @@ void main() {
     float texelMetres = kEarthRadius / uDetailLevels[uTextureLevel].y;
     float cellsPerTexel = exp2(round(log2(max(texelMetres / uCrown.x, 1.0))));
     vec2 cellCoordinate = texel * cellsPerTexel;
-    uvec2 cell = uvec2(mod(floor(cellCoordinate), uClipmapSize * cellsPerTexel));
 
     // Tangents of the cell coordinates (Schüler's cotangent frame from derivatives).
     vec3 dp1 = dFdx(position), dp2 = dFdy(position);
@@ -172,27 +174,61 @@ void main() {
     float brightness = 1.0 + 0.16 * (texelNoise(texel) - 0.5);
     vec2 disc;
     if (cellPixels >= 2.0) {
-        // One crown per cell: a disc of the crown's width (at most the cell), jittered.
+        // Crowns of the crown's width, one per cell at a uniform place in it (a crown may
+        // reach into the neighbouring cells: a disc of radius <= half a cell around this
+        // point meets at most the 2 × 2 cells nearest it, so those hold every crown that
+        // can cover it). Crowns centred on their cells, as first built, lined up in the
+        // clipmap's lattice: a forest seen from an aircraft was a grid of dots.
         float cellMetres = texelMetres / cellsPerTexel;
         float radius = min(0.5 * uCrown.x / cellMetres, 0.5);  // cell units
-        vec2 centre = 0.5 + (0.5 - radius) * (2.0 * vec2(unitHash(cell, 3u), unitHash(cell, 4u)) - 1.0);
-        vec2 local = (fract(cellCoordinate) - centre) / radius;  // the disc: |local| <= 1
-        float inDisc = 3.14159265 * radius * radius;             // share of the cell
-        // Opaque share of a crown's outline as the drawn crowns show it (side view);
-        // present crowns, opaque crown points and the corners between the crowns make
-        // up the same cover as the per-pixel dither farther away.
+        float inDisc = 3.14159265 * radius * radius;             // one crown's share of a cell
+        // Cover of a point = 1 − Π (1 − present × inside × a_i) over the four cells, a_i the
+        // shares of the point's disc of possible centres in each (Σ a_i = inDisc), taken as
+        // equal: present crowns with opaque points in the proportions the drawn crowns show
+        // from the side; where even present crowns fully opaque fall short, per-pixel dither
+        // fills the ground between them.
         float opaque = clamp(uCrownOpacity, 0.05, 1.0);
-        float present = min(seen / (inDisc * opaque), 1.0);
-        float inside = present < 1.0 ? opaque : min(seen / inDisc, 1.0);
-        float corners = clamp((seen - inDisc) / max(1.0 - inDisc, 1e-3), 0.0, 1.0);
-        float r2 = dot(local, local);
-        float keep = unitHash(cell, 1u) < present ? (r2 < 1.0 ? inside : corners) : 0.0;
+        float share = 0.25 * inDisc;
+        float needed = 1.0 - pow(1.0 - min(seen, 0.9999), 0.25);  // = present × inside × share
+        float present = min(needed / (share * opaque), 1.0);
+        float inside = present < 1.0 ? opaque : min(needed / share, 1.0);
+        float discCover = 1.0 - pow(1.0 - inside * share, 4.0);
+        float between = clamp((seen - discCover) / max(1.0 - discCover, 1e-3), 0.0, 1.0);
+        int crowns = 0;
+        float nearest = 2.0;
+        uvec2 nearestCell = uvec2(0u);
+        vec2 nearestLocal = vec2(0.0);
+        vec2 first = floor(cellCoordinate - 0.5);
+        float wrap = uClipmapSize * cellsPerTexel;
+        for (int k = 0; k < 4; ++k) {
+            vec2 at = first + vec2(k & 1, k >> 1);
+            uvec2 c = uvec2(mod(at, wrap));
+            if (unitHash(c, 1u) >= present) {
+                continue;
+            }
+            vec2 centre = at + vec2(unitHash(c, 3u), unitHash(c, 4u));
+            vec2 local = (cellCoordinate - centre) / radius;  // the disc: |local| <= 1
+            float r2 = dot(local, local);
+            if (r2 < 1.0) {
+                ++crowns;
+                if (r2 < nearest) {
+                    nearest = r2;
+                    nearestCell = c;
+                    nearestLocal = local;
+                }
+            }
+        }
+        float keep = crowns > 0 ? 1.0 - pow(1.0 - inside, float(crowns)) : between;
         if (pixelNoise() >= keep) {
             discard;  // a gap between or in the crowns: the terrain shows
         }
-        brightness *= 0.88 + 0.24 * unitHash(cell, 2u);
-        disc = r2 < 1.0 ? local : discPoint(unitHash(uvec2(gl_FragCoord.xy), 5u),
-                                            unitHash(uvec2(gl_FragCoord.xy), 6u));
+        if (crowns > 0) {
+            brightness *= 0.88 + 0.24 * unitHash(nearestCell, 2u);
+            disc = nearestLocal;
+        } else {
+            disc = discPoint(unitHash(uvec2(gl_FragCoord.xy), 5u),
+                             unitHash(uvec2(gl_FragCoord.xy), 6u));
+        }
     } else {
         if (pixelNoise() >= seen) {
             discard;
