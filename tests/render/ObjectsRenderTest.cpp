@@ -15,6 +15,7 @@
 
 #include <unistd.h>
 
+#include "SceneRenderSupport.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/plantlod/PlantGenerator.h"
@@ -76,22 +77,8 @@ Camera downwards(double east, double north, double height, double fov) {
     return c;
 }
 
-class ObjectsRender : public ::testing::Test {
+class ObjectsRender : public SceneRenderFixture {
 protected:
-    void SetUp() override {
-        Result<std::unique_ptr<GlContext>> context = GlContext::create({});
-        ASSERT_TRUE(context) << context.error().message;
-        context_ = std::move(context.value());
-        Result<std::unique_ptr<SceneRenderer>> renderer =
-            SceneRenderer::create(ShaderLibrary(), TerrainSettings{});
-        ASSERT_TRUE(renderer) << renderer.error().message;
-        renderer_ = std::move(renderer.value());
-    }
-    void TearDown() override {
-        renderer_.reset();
-        context_.reset();
-    }
-
     // Renders `meshes` over the flat ground; returns the height above the ellipsoid of the
     // surface seen through pixel (x, y), from the depth buffer.
     std::vector<float> render(const std::vector<const MeshSource*>& meshes, const Camera& camera,
@@ -120,8 +107,6 @@ protected:
         return Ellipsoid::toGeodetic(point).height;
     }
 
-    std::unique_ptr<GlContext> context_;
-    std::unique_ptr<SceneRenderer> renderer_;
     const ConstantSource ground_{"ground", kGround};
     const NormalMapSource normals_{"ground.normals", &ground_, 1.0};
     TileEvaluator evaluator_{TileFormat{256, 2}};

@@ -25,6 +25,7 @@
 
 #include <unistd.h>
 
+#include "SceneRenderSupport.h"
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/image/ProposalMask.h"
@@ -157,21 +158,8 @@ Camera oblique() {
     return c;
 }
 
-class PhotomontageRender : public ::testing::Test {
+class PhotomontageRender : public SceneRenderFixture {
 protected:
-    void SetUp() override {
-        Result<std::unique_ptr<GlContext>> context = GlContext::create({});
-        ASSERT_TRUE(context) << context.error().message;
-        context_ = std::move(context.value());
-        Result<std::unique_ptr<SceneRenderer>> renderer =
-            SceneRenderer::create(ShaderLibrary(), TerrainSettings{});
-        ASSERT_TRUE(renderer) << renderer.error().message;
-        renderer_ = std::move(renderer.value());
-    }
-    void TearDown() override {
-        renderer_.reset();
-        context_.reset();
-    }
     std::vector<float> depth(const std::vector<const MeshSource*>& meshes, const Camera& camera) {
         TerrainLayers layers{&ground_, nullptr, &normals_, {}, meshes};
         RenderSettings settings;
@@ -185,8 +173,6 @@ protected:
         return renderer_->depth();
     }
 
-    std::unique_ptr<GlContext> context_;
-    std::unique_ptr<SceneRenderer> renderer_;
     const ConstantSource ground_{"ground", kGround};
     const NormalMapSource normals_{"ground.normals", &ground_, 1.0};
     TileEvaluator evaluator_{TileFormat{256, 2}};

@@ -156,6 +156,16 @@ protected:
         return c;
     }
 
+    // An aircraft 1500 m up, 6.5 km south of the crest, looking north 9° down: the ridge's
+    // forested south slope from about 4 to 7 km.
+    static Camera aircraft(double fov) {
+        Camera c = camera(6500.0, -9.0 * kDegree, fov);
+        c.geodetic.height = 1500.0;
+        c.position = Ellipsoid::toEcef(c.geodetic);
+        c.axes = Camera::axesFromAngles(c.geodetic, 0.0, -9.0 * kDegree, 0.0);
+        return c;
+    }
+
     static Image render(const Camera& c, int width, int height, double band) {
         return render(layers_, c, width, height, band);
     }
@@ -441,10 +451,7 @@ BandStatistics bandStatistics(const Image& forest, const Image& bare,
 TEST_F(FarFieldGolden, HandOverShowsNoBand) {
     constexpr int kWidth = 480, kHeight = 270;
     const double fov = 20.0 * kDegree;
-    Camera c = camera(6500.0, -9.0 * kDegree, fov);
-    c.geodetic.height = 1500.0;
-    c.position = Ellipsoid::toEcef(c.geodetic);
-    c.axes = Camera::axesFromAngles(c.geodetic, 0.0, -9.0 * kDegree, 0.0);
+    const Camera c = aircraft(fov);
     TerrainLayers bareLayers = layers_;
     bareLayers.plants.clear();
     const Image bare = render(bareLayers, c, kWidth, kHeight, 500.0);
@@ -547,10 +554,7 @@ Image downsample(const Image& large, int factor) {
 TEST_F(FarFieldGolden, SmallTreesKeepTheirCover) {
     constexpr int kWidth = 320, kHeight = 180, kFactor = 4;
     const double fov = 20.0 * kDegree;
-    Camera c = camera(6500.0, -9.0 * kDegree, fov);
-    c.geodetic.height = 1500.0;
-    c.position = Ellipsoid::toEcef(c.geodetic);
-    c.axes = Camera::axesFromAngles(c.geodetic, 0.0, -9.0 * kDegree, 0.0);
+    const Camera c = aircraft(fov);
     TerrainLayers bareLayers = mixed_;
     bareLayers.plants.clear();
     const Image bare = render(bareLayers, c, kWidth, kHeight, 0.0);
