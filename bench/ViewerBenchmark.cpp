@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "sylva/core/geo/Ellipsoid.h"
@@ -181,6 +182,24 @@ MetricList metricsOf(const std::vector<FrameRecord>& frames, double budget) {
             {"refined_frames", double(refined)}};
 }
 
+// One line for a Scheduler task: where its worker's time went (inputs it produced itself
+// hold the worker as long as the task; while every worker is in one the queue stands).
+void traceTask(std::FILE* trace, const char* what, const SchedulerTaskReport& task) {
+    std::string nested;
+    for (const auto& [name, count] : task.producedPerSource) {
+        nested += (nested.empty() ? "" : ", ") + name + " " + std::to_string(count);
+    }
+    std::fprintf(trace,
+                 "  %s worker %d: %s %s%s, started t %.2f s, %.2f s, waited %.2f s, inputs "
+                 "produced %zu (%s), read from disk %zu\n",
+                 what, task.worker, task.source.c_str(), task.key.toString().c_str(),
+                 task.fromDisk ? " (from disk)" : "", task.startSeconds, task.seconds,
+                 task.waitSeconds, task.produced, nested.c_str(), task.diskReads);
+}
+
+// Tasks shorter than this are not traced (most are milliseconds).
+constexpr double kTracedTaskSeconds = 0.5;
+
 }  // namespace
 
 std::string ViewerBenchmarkResult::json() const {
@@ -199,6 +218,13 @@ Result<ViewerBenchmarkResult> runViewerBenchmark(const ViewerBenchmarkOptions& o
     batchOptions.height = options.height;
     batchOptions.diskCacheFolder = options.diskCache;
     batchOptions.diskCacheDisabled = !options.diskCache;
+    if (options.trace != nullptr) {
+        batchOptions.schedulerTaskSink = [trace = options.trace](const SchedulerTaskReport& task) {
+            if (task.seconds >= kTracedTaskSeconds) {
+                traceTask(trace, "task", task);
+            }
+        };
+    }
     render::BatchRenderer batch(batchOptions);
     if (Status set = batch.setProject(std::move(models.value())); !set) {
         return set.error();
@@ -263,6 +289,15 @@ Result<ViewerBenchmarkResult> runViewerBenchmark(const ViewerBenchmarkOptions& o
                     options.trace,
                     "  texture level %d, resident level %d, nadir ceiling %s, near %.3f m\n",
                     s.terrain.textureLevel, s.terrain.residentLevel, ceiling, frame.near);
+            }
+            if (Result<render::RenderSetup> setup = batch.setup(); setup) {
+                // What holds the workers now (a queue that stands: both in long tasks?).
+                for (const SchedulerTaskReport& task :
+                     batch.scheduler(setup.value()).runningTasks()) {
+                    if (task.seconds >= kTracedTaskSeconds) {
+                        traceTask(options.trace, "running", task);
+                    }
+                }
             }
             std::fflush(options.trace);
         }

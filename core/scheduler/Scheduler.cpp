@@ -44,6 +44,8 @@ void lowerThreadPriority(int increment) {
 }  // namespace
 
 thread_local Scheduler::PinScope* Scheduler::pinScope_ = nullptr;
+thread_local SchedulerTaskReport* Scheduler::currentTask_ = nullptr;
+thread_local int Scheduler::taskDepth_ = 0;
 
 Scheduler::Scheduler(SchedulerOptions options) : options_(std::move(options)) {
     int workers = options_.workers;
@@ -54,11 +56,13 @@ Scheduler::Scheduler(SchedulerOptions options) : options_(std::move(options)) {
         lowerThreadPriority(options_.workerNiceIncrement > 0 ? 1 : 0);
         managerLoop();
     });
+    workerTasks_.resize(static_cast<std::size_t>(workers));
+    workerBusy_.assign(static_cast<std::size_t>(workers), 0);
     for (int i = 0; i < workers; ++i) {
-        workers_.emplace_back([this] {
+        workers_.emplace_back([this, i] {
             lowerThreadPriority(options_.workerNiceIncrement);
             WorkerPool::runSeriallyOnThisThread();
-            workerLoop();
+            workerLoop(i);
         });
     }
 }
@@ -146,7 +150,11 @@ Result<TilePointer> Scheduler::tile(const Source& source, const TileKey& key) {
                 auto it = tasks_.find(id);
                 return it == tasks_.end() || it->second.state != TaskState::Running;
             });
-            nestedSeconds += std::chrono::duration<double>(Clock::now() - start).count();
+            const double waited = std::chrono::duration<double>(Clock::now() - start).count();
+            nestedSeconds += waited;
+            if (currentTask_ != nullptr) {
+                currentTask_->waitSeconds += waited;
+            }
             continue;  // cached, failed, or evicted/invalidated meanwhile: look again
         }
         if (task != tasks_.end()) {
@@ -168,6 +176,7 @@ Result<TilePointer> Scheduler::run(std::unique_lock<std::mutex>& lock, const Tas
 
     const double outerNested = nestedSeconds;
     nestedSeconds = 0.0;
+    ++taskDepth_;
     PinScope scope{this, {}};
     PinScope* const outerScope = pinScope_;
     pinScope_ = &scope;
@@ -193,6 +202,17 @@ Result<TilePointer> Scheduler::run(std::unique_lock<std::mutex>& lock, const Tas
     }
 
     lock.lock();
+    --taskDepth_;
+    if (currentTask_ != nullptr) {
+        if (taskDepth_ == 0) {
+            currentTask_->fromDisk = fromDisk;
+        } else if (fromDisk) {
+            ++currentTask_->diskReads;
+        } else {
+            ++currentTask_->produced;
+            ++currentTask_->producedPerSource[source.name()];
+        }
+    }
     tasks_.erase(id);
     ++finished_;
     unpinLocked(scope.inputs);
@@ -489,7 +509,7 @@ void Scheduler::managerLoop() {
     }
 }
 
-void Scheduler::workerLoop() {
+void Scheduler::workerLoop(int worker) {
     std::unique_lock lock(mutex_);
     ++idleWorkers_;
     managerWake_.notify_one();
@@ -508,7 +528,30 @@ void Scheduler::workerLoop() {
         task->second.state = TaskState::Running;
         const Source* source = task->second.source;
         --idleWorkers_;
+        SchedulerTaskReport& report = workerTasks_[static_cast<std::size_t>(worker)];
+        report = SchedulerTaskReport{};
+        report.worker = worker;
+        report.source = source->name();
+        report.key = id.key;
+        const auto start = Clock::now();
+        report.startSeconds = std::chrono::duration<double>(start - created_).count();
+        workerBusy_[static_cast<std::size_t>(worker)] = 1;
+        currentTask_ = &report;
         (void)run(lock, id, *source);
+        currentTask_ = nullptr;
+        workerBusy_[static_cast<std::size_t>(worker)] = 0;
+        report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        if (options_.taskSink) {
+            // Counted like a failure report, so waitIdle() also waits for this one (the
+            // lock was held since run() erased the task).
+            const SchedulerTaskReport finished = report;
+            ++reportsInFlight_;
+            lock.unlock();
+            options_.taskSink(finished);
+            lock.lock();
+            --reportsInFlight_;
+            progress_.notify_all();
+        }
         ++idleWorkers_;
         managerWake_.notify_one();
     }
@@ -665,6 +708,19 @@ std::size_t Scheduler::peakCachedBytes() const {
 std::uint64_t Scheduler::finishedTasks() const {
     std::lock_guard lock(mutex_);
     return finished_;
+}
+
+std::vector<SchedulerTaskReport> Scheduler::runningTasks() const {
+    std::lock_guard lock(mutex_);
+    const double now = std::chrono::duration<double>(Clock::now() - created_).count();
+    std::vector<SchedulerTaskReport> running;
+    for (std::size_t i = 0; i < workerTasks_.size(); ++i) {
+        if (workerBusy_[i] != 0) {
+            running.push_back(workerTasks_[i]);
+            running.back().seconds = now - running.back().startSeconds;
+        }
+    }
+    return running;
 }
 
 std::size_t Scheduler::queuedTasks() const {

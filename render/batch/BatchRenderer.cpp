@@ -163,6 +163,7 @@ Scheduler& BatchRenderer::scheduler(const RenderSetup& setup) {
             disk.warningSink = options_.warningSink;
             schedulerOptions.diskCache = std::make_shared<DiskTileCache>(std::move(disk));
         }
+        schedulerOptions.taskSink = options_.schedulerTaskSink;
         scheduler_ = std::make_unique<Scheduler>(schedulerOptions);
     }
     return *scheduler_;

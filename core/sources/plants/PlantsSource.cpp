@@ -134,6 +134,7 @@ std::optional<double> parseNumber(const std::string& text) {
 struct PlantsSource::Window {
     GeographicBounds bounds;       // unwrapped longitudes allowed
     std::optional<TileKey> owner;  // keep only instances owned by this tile
+    bool heights = true;           // false: instances' heights are 0 (no elevation read)
 
     // Whether an instance at this (unwrapped) position belongs to the window. `like`
     // gives the level of the owner tiles.
@@ -165,25 +166,22 @@ public:
         TilePointer elevation, density;
     };
 
-    InputTiles(const Source& elevation, const Source* density, int sampleLevel,
+    // `elevation` nullptr: heights are not wanted (heightAt gives 0).
+    InputTiles(const Source* elevation, const Source* density, int sampleLevel,
                TileProvider& provider)
         : elevation_(elevation), density_(density), provider_(provider) {
         sampleKey_.level = sampleLevel;
     }
 
-    // The tiles holding a longitude/latitude (radians).
-    Result<const Inputs*> at(double longitude, double latitude) {
+    // The tiles holding a longitude/latitude (radians): the density tile; the elevation
+    // tile only once heightAt asked for a position in it.
+    Result<Inputs*> at(double longitude, double latitude) {
         const TileKey owner = tileOf(sampleKey_, longitude, latitude);
         auto it = tiles_.find(owner);
         if (it != tiles_.end()) {
             return &it->second;
         }
         Inputs inputs;
-        Result<TilePointer> elevation = provider_.tile(elevation_, owner);
-        if (!elevation) {
-            return elevation.error();
-        }
-        inputs.elevation = elevation.value();
         if (density_ != nullptr) {
             Result<TilePointer> density = provider_.tile(*density_, owner);
             if (!density) {
@@ -194,8 +192,33 @@ public:
         return &tiles_.emplace(owner, std::move(inputs)).first->second;
     }
 
+    // The terrain height (metres) at a kept instance. The elevation tile is fetched on the
+    // first instance in it, not with the density: a sample tile without instances (no
+    // forest there) never makes the provider produce the elevation chain (fractal noise,
+    // blends: most of an instance tile's cost), and callers that draw instances in plan
+    // want no heights at all (issue 20: a colour tile's markers held a worker for 30 s).
+    Result<double> heightAt(double longitude, double latitude) {
+        if (elevation_ == nullptr) {
+            return 0.0;
+        }
+        Result<Inputs*> tiles = at(longitude, latitude);
+        if (!tiles) {
+            return tiles.error();
+        }
+        Inputs& inputs = *tiles.value();
+        if (!inputs.elevation) {
+            Result<TilePointer> elevation =
+                provider_.tile(*elevation_, tileOf(sampleKey_, longitude, latitude));
+            if (!elevation) {
+                return elevation.error();
+            }
+            inputs.elevation = elevation.value();
+        }
+        return double(sample(*inputs.elevation, longitude, latitude));
+    }
+
 private:
-    const Source& elevation_;
+    const Source* elevation_;
     const Source* density_;
     TileProvider& provider_;
     TileKey sampleKey_;
@@ -315,7 +338,7 @@ int PlantsSource::minimumLevel() const {
 Result<std::vector<PlantInstance>> PlantsSource::generate(const TileKey& key, const Window& window,
                                                           TileProvider& provider) const {
     std::vector<PlantInstance> out;
-    InputTiles inputs(*elevation_, density_, sampleLevel_, provider);
+    InputTiles inputs(window.heights ? elevation_ : nullptr, density_, sampleLevel_, provider);
     std::vector<FeatureHit> polygons;
     if (features_ != nullptr) {
         Result<std::shared_ptr<const FeatureCollection>> collection = features_->collection();
@@ -436,12 +459,11 @@ Status PlantsSource::placePoints(const std::vector<FeatureHit>& hits,
             if (!instance) {
                 return instance.error();
             }
-            Result<const InputTiles::Inputs*> tiles = inputs.at(longitude, p.y);
-            if (!tiles) {
-                return tiles.error();
+            Result<double> height = inputs.heightAt(instance->longitude, instance->latitude);
+            if (!height) {
+                return height.error();
             }
-            instance->height =
-                sample(*tiles.value()->elevation, instance->longitude, instance->latitude);
+            instance->height = height.value();
             out.push_back(*instance);
         }
     }
@@ -652,11 +674,11 @@ Status PlantsSource::scatterCell(const RowCells& cells, std::int64_t cell,
             return Status::success();
         }
     }
-    Result<const InputTiles::Inputs*> tiles = inputs.at(longitude, latitude);
-    if (!tiles) {
-        return tiles.error();
-    }
     if (density_ != nullptr) {
+        Result<InputTiles::Inputs*> tiles = inputs.at(longitude, latitude);
+        if (!tiles) {
+            return tiles.error();
+        }
         density *= std::clamp(sample(*tiles.value()->density, longitude, latitude), 0.0f, 1.0f);
     }
     const double densityScale = parameters_.perHectare / 1.0e4;
@@ -678,7 +700,11 @@ Status PlantsSource::scatterCell(const RowCells& cells, std::int64_t cell,
     instance.rotation = static_cast<float>(random.uniform() * kTwoPi);
     instance.tint = glm::vec3(
         static_cast<float>(1.0 + (2.0 * random.uniform() - 1.0) * parameters_.tintVariation));
-    instance.height = sample(*tiles.value()->elevation, longitude, latitude);
+    Result<double> height = inputs.heightAt(longitude, latitude);
+    if (!height) {
+        return height.error();
+    }
+    instance.height = height.value();
     out.push_back(instance);
     return Status::success();
 }
@@ -712,6 +738,7 @@ Result<std::vector<PlantInstance>> PlantsSource::instancesNear(const TileKey& ke
     const double marginLongitude = std::min(marginMetres / parallel, kPi);
     window.bounds = {key.west() - marginLongitude, std::max(key.south() - marginLatitude, -kPi / 2),
                      key.east() + marginLongitude, std::min(key.north() + marginLatitude, kPi / 2)};
+    window.heights = false;  // drawn in plan (see the header)
     return generate(key, window, provider);
 }
 

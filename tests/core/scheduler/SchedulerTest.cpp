@@ -680,6 +680,49 @@ TEST(Scheduler, InputsOfARunningTaskAreNotEvictedBeforeItEnds) {
     EXPECT_GT(scheduler.totals().evictions, evictionsBefore);
 }
 
+TEST(Scheduler, TaskReportsCountTheInputsAWorkerProducedWithinItsTask) {
+    // A task whose inputs are not cached holds its worker while it produces them all:
+    // the report (and runningTasks() meanwhile) says which task and how many inputs.
+    TestSource base("base", 1);
+    const RereadingSource reader(&base, 8);
+    Gate gate;
+    TestSource gated("gated", 2);
+    gated.gate = &gate;
+    std::mutex mutex;
+    std::vector<SchedulerTaskReport> reports;
+    SchedulerOptions withSink = options(1);
+    withSink.taskSink = [&](const SchedulerTaskReport& report) {
+        std::lock_guard lock(mutex);
+        reports.push_back(report);
+    };
+    Scheduler scheduler(withSink);
+    scheduler.request(reader, TileKey{5, 0, 3, 7}, 0);
+    scheduler.waitIdle();
+    scheduler.request(gated, TileKey{5, 0, 1, 1}, 0);
+    gate.waitForWaiters(1);
+    const std::vector<SchedulerTaskReport> running = scheduler.runningTasks();
+    ASSERT_EQ(running.size(), 1u);
+    EXPECT_EQ(running[0].source, "gated");
+    EXPECT_EQ(running[0].key, (TileKey{5, 0, 1, 1}));
+    EXPECT_GE(running[0].seconds, 0.0);
+    gate.open();
+    scheduler.waitIdle();
+    EXPECT_TRUE(scheduler.runningTasks().empty());
+    std::lock_guard lock(mutex);
+    ASSERT_EQ(reports.size(), 2u);
+    EXPECT_EQ(reports[0].source, "rereading");
+    EXPECT_EQ(reports[0].key, (TileKey{5, 0, 3, 7}));
+    EXPECT_EQ(reports[0].produced, 9u);  // 9 distinct inputs, the re-read one cached
+    EXPECT_EQ(reports[0].producedPerSource.at("base"), 9u);
+    EXPECT_EQ(reports[0].diskReads, 0u);
+    EXPECT_FALSE(reports[0].fromDisk);
+    EXPECT_EQ(reports[1].source, "gated");
+    EXPECT_EQ(reports[1].produced, 0u);
+    // Inputs produced by the render thread's own tile() are no worker's task.
+    ASSERT_TRUE(scheduler.tile(reader, TileKey{5, 0, 4, 8}));
+    EXPECT_EQ(reports.size(), 2u);
+}
+
 TEST(Scheduler, AnEditOverBudgetRecomputesTheEditedBranchNotTheEvictedExpensiveTiles) {
     // The turnaround bench's warm edit in small (issue 22: edit_ratio 0.155 -> 0.56):
     // one frame's tiles exceed the budget; `saturation` of the adjust branch changes.

@@ -5,6 +5,7 @@
 #include <GeographicLib/Geodesic.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -400,6 +401,63 @@ TEST(PlantsSource, RasterizedCrownsAreSeamless) {
     // Crown cover ~ density x pi r^2 x scale^2 (1 - overlap): between 15 % and 15 % x 1.1.
     EXPECT_GT(covered / (64 * 64), 0.08);
     EXPECT_LT(covered / (64 * 64), 0.16);
+}
+
+// Flat ground at 7 m that counts the tiles it produced.
+class CountingGround final : public Source {
+public:
+    CountingGround() : Source("ground", "counting", PortType::Elevation, 1) { setParameterHash(7); }
+    Result<TilePointer> produce(const TileKey& key, TileProvider& provider) const override {
+        ++calls;
+        const TileFormat& format = provider.format();
+        auto tile = std::make_shared<ImageTile>(key, format.size, format.border, 1);
+        for (float& t : tile->texels()) {
+            t = 7.0f;
+        }
+        return TilePointer(std::move(tile));
+    }
+    mutable std::atomic<int> calls{0};
+};
+
+TEST(PlantsSource, ElevationIsReadOnlyWhereInstancesAreKeptAndNeverForMarkers) {
+    // Issue 20: a colour tile of level 11 with rasterized markers made its worker produce
+    // the elevation chain of every sample tile under it (30-60 tiles of fractal noise,
+    // 15-30 s), though markers are drawn in plan and most sample tiles hold no forest.
+    const CountingGround ground;
+    // Forest only east of 2.01°: the western sample tiles hold no instance.
+    const FunctionMask east(3,
+                            [](double, double lon) { return lon > 2.01 * kDegree ? 1.0f : 0.0f; });
+    auto plants = scatter(ground, east, 40.0, 5.0);
+    RasterizeParameters p;
+    p.image = false;
+    p.pointRadius = 3.0;
+    RasterizeSource markers("markers", nullptr, plants.get(), p);
+    TileEvaluator evaluator(TileFormat{64, 2});
+    const int level = std::max(plants->minimumLevel(), plants->sampleLevel() - 3);
+    TileKey key = keyAt(level, 2.0, 41.0);
+    ASSERT_LT(key.west(), 2.01 * kDegree);
+    ASSERT_GT(key.east(), 2.01 * kDegree);
+    Result<TilePointer> drawn = evaluator.tile(markers, key);
+    ASSERT_TRUE(drawn);
+    double covered = 0.0;
+    for (int iy = 0; iy < 64; ++iy) {
+        for (int ix = 0; ix < 64; ++ix) {
+            covered += drawn.value()->at(ix, iy, 0);
+        }
+    }
+    EXPECT_GT(covered, 0.0);            // markers were drawn...
+    EXPECT_EQ(ground.calls.load(), 0);  // ...without a single elevation tile
+    // Instance tiles (what the vegetation renderer draws) carry heights, read only from
+    // the sample tiles that hold instances: fewer than the tiles the density was read in.
+    Result<std::shared_ptr<const InstanceTile>> tile = plants->instances(key, evaluator);
+    ASSERT_TRUE(tile);
+    ASSERT_FALSE(tile.value()->instances.empty());
+    for (const PlantInstance& instance : tile.value()->instances) {
+        EXPECT_FLOAT_EQ(float(instance.height), 7.0f);
+    }
+    const int samples = 1 << (plants->sampleLevel() - level);  // per side of the tile
+    EXPECT_GT(ground.calls.load(), 0);
+    EXPECT_LT(ground.calls.load(), samples * samples);
 }
 
 }  // namespace

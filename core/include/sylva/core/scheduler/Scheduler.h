@@ -51,6 +51,7 @@
 // (or cancelAll()); both return only after running tasks of dropped sources finished.
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
@@ -71,6 +72,23 @@
 
 namespace sylva {
 
+// One task a worker took from the queue and what it cost, inputs included (for traces:
+// a task that produces many inputs itself holds its worker that long, and the queue
+// does not move while every worker is inside one).
+struct SchedulerTaskReport {
+    int worker = 0;             // 0..workerCount()-1
+    std::string source;         // the task's source name
+    TileKey key;                // the task's tile
+    double startSeconds = 0;    // steady clock, since the scheduler was created
+    double seconds = 0;         // wall time so far (running) or in all (finished)
+    bool fromDisk = false;      // the task's own tile came from the disk cache
+    double waitSeconds = 0;     // waiting for inputs another thread was producing
+    std::size_t produced = 0;   // inputs produced within the task (any depth)
+    std::size_t diskReads = 0;  // inputs read from the disk cache within the task
+    // Inputs produced within the task per source name (read from disk not counted).
+    std::map<std::string, std::size_t> producedPerSource;
+};
+
 struct SchedulerOptions {
     TileFormat format;
     int workers = 0;                        // 0: std::thread::hardware_concurrency()
@@ -83,6 +101,10 @@ struct SchedulerOptions {
     // from it before producing and written to it after (on the producing thread, outside
     // the lock). Shared: several schedulers may use one.
     std::shared_ptr<DiskTileCache> diskCache;
+    // Called on the worker after each task it took from the queue (not for inputs it
+    // produced within it), outside the lock; waitIdle() waits for it. Tracing only; none
+    // by default.
+    std::function<void(const SchedulerTaskReport&)> taskSink;
 };
 
 // Per source content hash, or the total over all sources.
@@ -167,6 +189,8 @@ public:
     // need while nothing new can be shown.
     std::uint64_t finishedTasks() const;
     int workerCount() const { return static_cast<int>(workers_.size()); }
+    // The task each busy worker is inside now (seconds so far, inputs produced so far).
+    std::vector<SchedulerTaskReport> runningTasks() const;
 
 private:
     struct TaskId {
@@ -212,13 +236,17 @@ private:
         std::vector<TaskId> inputs;
     };
     static thread_local PinScope* pinScope_;  // the innermost task on this thread, or null
+    // The worker's task being run on this thread (guarded by mutex_), or null: on a
+    // worker, inside its task; elsewhere (the render thread's tile()) always null.
+    static thread_local SchedulerTaskReport* currentTask_;
+    static thread_local int taskDepth_;  // run() calls active on this thread
     struct Message {
         enum class Kind { Request, Cancel, SetWanted, CancelAll } kind;
         std::vector<TileRequest> requests;  // Request (one), SetWanted (all)
     };
 
     void managerLoop();
-    void workerLoop();
+    void workerLoop(int worker);
     // Runs a task whose state the caller set to Running; the lock is released while the
     // source produces. Returns the tile or the error.
     Result<TilePointer> run(std::unique_lock<std::mutex>& lock, const TaskId& id,
@@ -240,7 +268,7 @@ private:
     std::condition_variable managerWake_;  // messages arrived, a worker became idle, stop
     std::condition_variable workerWake_;   // a task was dispatched, stop
     std::condition_variable progress_;     // a task finished
-    std::size_t reportsInFlight_ = 0;      // failure sink calls running (outside the lock)
+    std::size_t reportsInFlight_ = 0;      // failure and task sink calls running (unlocked)
     std::deque<Message> inbox_;            // render thread → manager
     std::deque<TaskId> dispatched_;        // manager → workers
     std::set<std::tuple<int, std::uint64_t, TaskId>> queue_;  // (priority, sequence, id)
@@ -261,6 +289,10 @@ private:
     bool stopping_ = false;
     std::thread manager_;
     std::vector<std::thread> workers_;
+    // Per worker: its task while it runs one (workerBusy_), for runningTasks().
+    std::vector<SchedulerTaskReport> workerTasks_;
+    std::vector<char> workerBusy_;
+    std::chrono::steady_clock::time_point created_ = std::chrono::steady_clock::now();
 };
 
 }  // namespace sylva

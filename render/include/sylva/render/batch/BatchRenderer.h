@@ -64,6 +64,8 @@ struct BatchOptions {
     // Receives the disk cache's warnings (unwritable folder, corrupt entry), each kind
     // once per process; from any thread.
     std::function<void(const std::string&)> warningSink;
+    // SchedulerOptions::taskSink of the scheduler it creates (traces); none by default.
+    std::function<void(const SchedulerTaskReport&)> schedulerTaskSink;
 };
 
 class BatchRenderer {

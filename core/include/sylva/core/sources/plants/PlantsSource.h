@@ -32,6 +32,8 @@
 //    tiles of sampleLevel() (texels of at most two cells, longitude reduction 0),
 //    whatever level is requested, so a tile's instances are exactly those of its four
 //    children, and the inputs are never evaluated finer than the instances need.
+//    A sample tile's elevation is read only when an instance is kept in it, so where
+//    the density is zero the elevation chain is never produced.
 // This trades the irregularity of true dart-throwing Poisson-disk sampling for
 // exact density control and tile independence; the seed's distributions (001 ch. 3)
 // are statistical placements of the same kind.
@@ -91,7 +93,11 @@ public:
                                                           TileProvider& provider) const;
 
     // The instances of the tiles of key's level that lie within `marginMetres` of
-    // the key's bounds (for drawing things that reach across tile borders).
+    // the key's bounds (for drawing things that reach across tile borders), in plan:
+    // their heights are 0 and the elevation input is not read. Why: its one caller
+    // (rasterize markers into a colour layer) ignores heights, and a colour tile of
+    // level 11 (~10 km) made a worker produce the elevation chain (fractal noise and
+    // blends) of 30-60 sample tiles for them: 15-30 s a tile (issue 20's stall).
     Result<std::vector<PlantInstance>> instancesNear(const TileKey& key, double marginMetres,
                                                      TileProvider& provider) const;
 
