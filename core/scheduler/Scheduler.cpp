@@ -611,13 +611,13 @@ void Scheduler::dropHashLocked(std::uint64_t hash) {
 
 void Scheduler::retainOnly(const std::unordered_set<std::uint64_t>& live) {
     std::unique_lock lock(mutex_);
-    // Requests still in the inbox may name sources about to be destroyed.
-    std::erase_if(inbox_, [&](const Message& message) {
-        return std::any_of(message.requests.begin(), message.requests.end(),
-                           [&](const TileRequest& request) {
-                               return live.count(request.source->contentHash()) == 0;
-                           });
-    });
+    // A reload builds new Source objects for every node, unchanged ones (same hash) too:
+    // every request not yet handled and every task not yet running names an object about
+    // to be destroyed, whatever its hash (a worker dereferenced one: issue 20's village
+    // walker test crashed in workerLoop after a reload). Forget them all, the next frame
+    // asks the new objects; then wait for every running task, whose nested productions
+    // and requests use the old objects too, and forget what they queued meanwhile.
+    forgetUnstartedLocked();
     std::vector<std::uint64_t> dead;
     for (const auto& [hash, cache] : caches_) {
         if (live.count(hash) == 0) {
@@ -628,12 +628,32 @@ void Scheduler::retainOnly(const std::unordered_set<std::uint64_t>& live) {
         dropHashLocked(hash);
     }
     progress_.wait(lock, [&] {
-        return std::none_of(tasks_.begin(), tasks_.end(),
-                            [&](const auto& entry) { return live.count(entry.first.hash) == 0; });
+        return std::none_of(tasks_.begin(), tasks_.end(), [](const auto& entry) {
+            return entry.second.state == TaskState::Running;
+        });
     });
+    forgetUnstartedLocked();
     for (std::uint64_t hash : dead) {
         cachedBytes_ -= caches_.at(hash).statistics.bytes;  // tiles a finishing task added
         caches_.erase(hash);
+    }
+}
+
+void Scheduler::forgetUnstartedLocked() {
+    // Wanted lists stay, emptied, so the manager still counts their rounds.
+    std::erase_if(inbox_, [](const Message& message) {
+        return message.kind == Message::Kind::Request || message.kind == Message::Kind::Cancel;
+    });
+    for (Message& message : inbox_) {
+        message.requests.clear();
+    }
+    for (auto task = tasks_.begin(); task != tasks_.end();) {
+        if (task->second.state == TaskState::Running) {
+            ++task;
+            continue;
+        }
+        removeQueuedLocked(task->first);
+        task = tasks_.erase(task);  // a dispatched one is skipped by its worker
     }
 }
 

@@ -769,6 +769,36 @@ TEST(Scheduler, AnEditOverBudgetRecomputesTheEditedBranchNotTheEvictedExpensiveT
     }
 }
 
+// A reload builds new Source objects, also for unchanged nodes (same hash): after
+// retainOnly nothing asked of the old objects runs any more (a worker would use a
+// destroyed object: issue 20's village walker test crashed so), and the task running
+// when it was called, of a live hash, finished before it returned and is kept.
+TEST(Scheduler, RetainOnlyForgetsEveryTaskOfTheOldObjectsAndWaitsForTheRunningOne) {
+    Gate gate;
+    auto old = std::make_unique<TestSource>("terrain", 1);
+    old->gate = &gate;
+    Scheduler scheduler(options(1));
+    for (int x = 0; x < 6; ++x) {
+        scheduler.request(*old, TileKey{4, 0, x, 3}, x);
+    }
+    gate.waitForWaiters(1);  // the first runs, held at the gate; five are queued
+    std::thread opener([&] {
+        std::this_thread::sleep_for(50ms);
+        gate.open();
+    });
+    TestSource renewed("terrain", 1);
+    ASSERT_EQ(renewed.contentHash(), old->contentHash());
+    scheduler.retainOnly({renewed.contentHash()});
+    EXPECT_EQ(scheduler.tryGet(renewed, TileKey{4, 0, 0, 3}, 0).state, TileLookup::State::Ready);
+    opener.join();
+    std::this_thread::sleep_for(100ms);  // time for a worker to take a forgotten task
+    EXPECT_EQ(old->calls.load(), 1);
+    old.reset();  // the old graph goes
+    scheduler.waitIdle();
+    ASSERT_TRUE(scheduler.tile(renewed, TileKey{4, 0, 5, 3}));
+    EXPECT_EQ(renewed.calls.load(), 1);
+}
+
 TEST(Scheduler, InvalidationDropsTheNodeAndItsDependentsOnly) {
     TestSource terrain("terrain", 1);
     TestSource colour("colour", 2);

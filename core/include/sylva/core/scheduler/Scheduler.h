@@ -47,8 +47,9 @@
 // the single lock is uncontended and makes the global budget exact.
 //
 // Lifetime: every Source handed to the scheduler must outlive the tasks that refer to
-// it. Before destroying a source graph call retainOnly() with the hashes still alive
-// (or cancelAll()); both return only after running tasks of dropped sources finished.
+// it. Before destroying a source graph call retainOnly() with the hashes still alive: it
+// forgets every request and task not yet running and returns after the running ones
+// finished (cancelAll() only cancels what is queued).
 #pragma once
 
 #include <chrono>
@@ -165,7 +166,9 @@ public:
     std::vector<std::uint64_t> invalidate(std::uint64_t contentHash);
     // Forgets everything of hashes not in `live` (after a project reload: changed nodes
     // and their dependents have new hashes, unchanged branches keep theirs and their
-    // tiles). Waits for running tasks of dropped hashes, so their sources may go.
+    // tiles), and every request and task not yet running, of any hash (they name the old
+    // graph's Source objects; the new graph's ask again). Waits for every running task,
+    // so the old graph may go.
     void retainOnly(const std::unordered_set<std::uint64_t>& live);
 
     // Blocks until no task is queued or running.
@@ -261,6 +264,8 @@ private:
     // Releases the pins a finished task took on its inputs; prunes if over budget.
     void unpinLocked(const std::vector<TaskId>& inputs);
     void dropHashLocked(std::uint64_t hash);
+    // Drops unhandled requests (wanted lists stay, emptied) and every task not running.
+    void forgetUnstartedLocked();
     void postLocked(Message message);
 
     SchedulerOptions options_;
