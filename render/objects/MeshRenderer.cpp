@@ -235,6 +235,16 @@ Status MeshRenderer::update(const std::vector<const MeshSource*>& sources, TileP
     return Status::success();
 }
 
+std::vector<std::shared_ptr<const MeshTile>> MeshRenderer::shownTiles() const {
+    std::vector<std::shared_ptr<const MeshTile>> shown;
+    for (const auto& [id, resident] : tiles_) {
+        if (resident->shown) {
+            shown.push_back(resident->tile);
+        }
+    }
+    return shown;
+}
+
 void MeshRenderer::dropKeptTiles(std::size_t keptBytes) {
     std::vector<std::pair<std::uint64_t, std::pair<std::uint64_t, TileKey>>> kept;  // by age
     std::size_t bytes = 0;

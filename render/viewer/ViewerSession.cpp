@@ -241,7 +241,13 @@ std::optional<double> ViewerSession::placedHeight(const Camera& camera, bool wai
         return std::nullopt;
     }
     if (mode_ == NavigationMode::Walk) {
-        return *ground + options_.walkEyeHeight;
+        // The feet are the current camera's: a walker steps onto what is within a step of
+        // them, and one arriving from a flight lands on the highest surface below.
+        const WalkerBody& body = options_.walker;
+        return WalkerCollision::standingHeight(
+                   meshCollision_, camera.geodetic.latitude, camera.geodetic.longitude,
+                   camera_.geodetic.height - body.eyeHeight, *ground, body) +
+               body.eyeHeight;
     }
     return std::max(camera.geodetic.height, *ground + kFlyClearance);
 }
@@ -282,6 +288,8 @@ void ViewerSession::move(double forward, double right, double up) {
     Camera moved = CameraNavigation::walk(camera_, forward, right);
     if (mode_ == NavigationMode::Orbit) {
         moved = CameraNavigation::atHeight(moved, moved.geodetic.height + up);
+    } else {
+        moved = WalkerCollision::step(meshCollision_, camera_, moved, options_.walker);
     }
     setCamera(moved);
 }
@@ -487,6 +495,12 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
     finishedAtFrame_ = scheduler_->finishedTasks();
     const auto start = std::chrono::steady_clock::now();
     Result<Image> image = renderScenario(layers_, settings);
+    if (image) {
+        // Before a comparison's second scenario updates the mesh renderer.
+        meshCollision_.setTiles(layers_.meshes.empty()
+                                    ? std::vector<std::shared_ptr<const MeshTile>>{}
+                                    : renderer_->meshes().shownTiles());
+    }
     RenderStatistics statistics = renderer_->statistics();
     bool pending = statistics.pending;
     if (image && comparison_ != ComparisonMode::None) {

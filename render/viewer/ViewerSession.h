@@ -129,8 +129,10 @@ private:
     // ready (never blocks), with `wait` the finest level's for that height (as JobView).
     std::optional<double> groundHeight(double latitude, double longitude, double heightAboveGround,
                                        bool wait) const;
-    // The height `camera` is placed at: eye height over the ground walking, at least the
-    // clearance over it otherwise; nothing when the ground's tile failed.
+    // The height `camera` is placed at: walking, eye height over the surface stood on (the
+    // terrain, or a mesh surface within a step of the current feet:
+    // WalkerCollision::standingHeight); at least the clearance over the terrain otherwise;
+    // nothing when the ground's tile failed.
     std::optional<double> placedHeight(const Camera& camera, bool wait) const;
     // Follows the ground under the standing camera (see placedHeight) without marking a
     // change: interactive frames as finer tiles arrive, screenshots at the finest level.
@@ -162,6 +164,9 @@ private:
     double near_ = 1.0;
     FrameReport report_;
     FrameBudget budget_;
+    // The shown scenario's meshes near the camera as the last frame drew them: what the
+    // walker stands on and is stopped by.
+    MeshCollision meshCollision_;
     std::string error_;
     FileWatch watch_;
     std::size_t reloads_ = 0;

@@ -16,14 +16,17 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
 
 #include "GoldenImage.h"
+#include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/image/ImageWriter.h"
 #include "sylva/core/scene/ViewerScript.h"
 #include "sylva/core/scheduler/Scheduler.h"
+#include "sylva/core/sources/objects/MeshSource.h"
 #include "sylva/core/terrain/ElevationQuery.h"
 #include "sylva/dsl/CameraBlockEditor.h"
 #include "sylva/dsl/ProjectLoader.h"
@@ -35,6 +38,7 @@ namespace {
 
 constexpr int kWidth = 320;
 constexpr int kHeight = 180;
+constexpr double kDegree = std::numbers::pi / 180.0;
 
 class TestHost final : public ViewerHost {
 public:
@@ -338,6 +342,85 @@ TEST(ViewerGolden, AWalkerSavedBeforeItsTilesArriveIsSavedOnTheFinestGround) {
     ASSERT_TRUE(ground) << ground.error().message;
     EXPECT_NEAR(saved->geodetic.height, std::max(ground.value(), 0.0) + 1.7, 1e-3);
     EXPECT_FALSE(renderBatch(folder, "check", "walker").empty());
+}
+
+// The village fixture's copy (absolute data paths) with a camera 400 m above the ellipsoid,
+// over the flat roof of house 4, looking west toward house 2.
+std::filesystem::path prepareVillage(const std::string& name, const std::string& script) {
+    const std::filesystem::path folder = prepare(name, script);
+    const std::filesystem::path golden =
+        std::filesystem::path(SYLVA_TEST_DATA_DIR) / "render" / "golden";
+    std::string text = readText(golden / "village.sylva");
+    for (const std::string key : {"file = \"", "model = \""}) {
+        for (std::size_t at = text.find(key); at != std::string::npos;
+             at = text.find(key, at + key.size())) {
+            text.insert(at + key.size(), golden.string() + "/");
+        }
+    }
+    text +=
+        "camera roof {\n    position = geo(10.0001266deg, 20.0deg, 400m)\n"
+        "    heading = 270deg\n    pitch = -5deg\n    fov = 60deg\n}\n";
+    std::ofstream(folder / "viewer.sylva") << text;
+    return folder;
+}
+
+// Walk mode among the proposal's buildings (issue 20: "eye height kept above terrain and
+// objects"): a walker dropped from a flight over house 4 stands on its flat roof (the
+// roof's height from the buildings source's own triangles), walks west off it onto the
+// terrain and is stopped 0.3 m short of house 2's east wall (the footprint's longitude in
+// village_buildings.geojson).
+TEST(ViewerGolden, AWalkerStandsOnARoofAndIsStoppedByAWall) {
+    const std::filesystem::path folder =
+        prepareVillage("walker_village",
+                       "camera roof\nwait-tiles\nmode walk\nwait-tiles\nsave-camera on_roof\n"
+                       "fly 40 0 0\nwait-tiles\nsave-camera at_wall\nquit\n");
+    int levelsWanted = 0;
+    const Status ran =
+        runViewer(folder, [&](const ViewerFrame& frame) { levelsWanted = frame.levelsWanted; });
+    ASSERT_TRUE(ran) << ran.error().message;
+
+    dsl::LoadResult loaded = dsl::loadProject(folder / "viewer.sylva");
+    ASSERT_FALSE(loaded.hasErrors()) << loaded.render();
+    const Camera::TerrainHeight noTerrain = [](double, double) -> Result<double> { return 0.0; };
+    const Block* onRoofBlock = loaded.scenarios.front().findCamera("on_roof");
+    const Block* atWallBlock = loaded.scenarios.front().findCamera("at_wall");
+    ASSERT_TRUE(onRoofBlock && atWallBlock);
+    const Camera onRoof = Camera::fromBlock(*onRoofBlock, noTerrain).value();
+    const Camera atWall = Camera::fromBlock(*atWallBlock, noTerrain).value();
+
+    // The roof: the highest vertex of the village tile inside house 4's footprint.
+    BatchRenderer batch;
+    ASSERT_TRUE(batch.setProject(loaded.scenarios));
+    Result<TerrainLayers> layers = batch.project().terrainLayers("village");
+    ASSERT_TRUE(layers) << layers.error().message;
+    Scheduler tiles;
+    const MeshSource* houses = MeshSource::from(layers->meshes.front());
+    ASSERT_NE(houses, nullptr);
+    const glm::dvec2 roofCentre(20.0 * kDegree, 10.0001266 * kDegree);
+    Result<std::shared_ptr<const MeshTile>> tile =
+        houses->tile(MeshSource::keyOf(roofCentre), tiles);
+    ASSERT_TRUE(tile) << tile.error().message;
+    double roof = -1e30;
+    for (const MeshVertex& vertex : tile.value()->geometry.vertices) {
+        const Geodetic at =
+            Ellipsoid::toGeodetic(tile.value()->origin + glm::dvec3(vertex.position));
+        if (at.longitude > 19.999926 * kDegree && at.longitude < 20.000074 * kDegree &&
+            at.latitude > 10.0000813 * kDegree && at.latitude < 10.0001719 * kDegree) {
+            roof = std::max(roof, at.height);
+        }
+    }
+    EXPECT_NEAR(onRoof.geodetic.height, roof + 1.7, 0.01);
+
+    // Stopped 0.3 m east of house 2's east wall, 40 m asked, on the terrain there.
+    const double metresPerDegree = Ellipsoid::primeVerticalRadius(atWall.geodetic.latitude) *
+                                   std::cos(atWall.geodetic.latitude) * kDegree;
+    EXPECT_NEAR((atWall.geodetic.longitude / kDegree - 19.999772) * metresPerDegree, 0.3, 0.01);
+    EXPECT_NEAR(atWall.geodetic.latitude, onRoof.geodetic.latitude, 1e-9);
+    const ElevationQuery query(*layers->elevation, tiles);
+    Result<double> ground =
+        query.groundHeight(atWall.geodetic.latitude, atWall.geodetic.longitude, levelsWanted);
+    ASSERT_TRUE(ground) << ground.error().message;
+    EXPECT_NEAR(atWall.geodetic.height, ground.value() + 1.7, 1e-3);
 }
 
 }  // namespace

@@ -97,6 +97,9 @@ public:
     void drawShadow(const ShadowView& view) override;
 
     const MeshStatistics& statistics() const { return statistics_; }
+    // The tiles of the last update's sources near its camera (those draw() draws): the
+    // CPU geometry, shared, for collisions (core/sources/objects/MeshCollision).
+    std::vector<std::shared_ptr<const MeshTile>> shownTiles() const;
 
 private:
     struct ResidentTile;

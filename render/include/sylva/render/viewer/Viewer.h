@@ -28,6 +28,7 @@
 #include "sylva/core/model/ProjectModel.h"
 #include "sylva/core/scene/Camera.h"
 #include "sylva/core/scene/ViewerScript.h"
+#include "sylva/core/scene/WalkerCollision.h"
 #include "sylva/render/batch/BatchRenderer.h"
 
 namespace sylva::render {
@@ -81,9 +82,11 @@ struct ViewerOptions {
     double budgetMilliseconds = 0;
     std::vector<ScriptCommand> script;  // run first; the window stays open afterwards
     bool closeAfterScript = false;      // also without `quit` (headless runs)
-    double walkEyeHeight = 1.7;         // metres above the ground in walk mode
-    double tileTimeoutSeconds = 600;    // wait-tiles and screenshots give up after this
-    FILE* log = stdout;                 // reloads, saves, screenshots, script progress
+    // Walk mode: eye height over the ground or the mesh surface stood on, the step climbed
+    // and the distance kept from walls (core/scene/WalkerCollision).
+    WalkerBody walker;
+    double tileTimeoutSeconds = 600;  // wait-tiles and screenshots give up after this
+    FILE* log = stdout;               // reloads, saves, screenshots, script progress
     // Called after every interactive frame (not screenshots).
     std::function<void(const ViewerFrame&)> onFrame;
 };
