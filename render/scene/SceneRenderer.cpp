@@ -29,6 +29,8 @@ namespace {
 // Clearance assumed under an interactive camera whose ground came from a coarser level
 // than the one it stands on (the finer tile is still being produced), metres.
 constexpr double kEstimatedClearance = 0.5;
+// The near plane as a fraction of the camera's clearance over the ground (see render()).
+constexpr double kNearFraction = 0.05;
 
 int levelRows(const RenderSettings& settings) {
     return settings.levelRows > 0 ? settings.levelRows : settings.height;
@@ -397,11 +399,16 @@ Result<Image> SceneRenderer::render(const TerrainLayers& layers, TileProvider& p
     } else {
         statistics_.pending = false;
     }
-    near_ = std::clamp(0.3 * statistics_.heightAboveTerrain, 0.02, 1.0e4);
+    // The near plane at a twentieth of the clearance: a walker's eye 1.7 m up has it at
+    // 8.5 cm, so a wall at the walker's 0.3 m (or a branch at arm's length) is not cut open
+    // (at 0.3 x the clearance it was 0.51 m and the walker saw into the house). Reversed-Z
+    // float depth keeps its relative precision at any near distance. The same for every
+    // scenario of a view: comparisons of depths (ProposalMask) need one near plane.
+    near_ = std::clamp(kNearFraction * statistics_.heightAboveTerrain, 0.02, 1.0e4);
     // The clearance may come from a finer probe than the level the ground near the camera
     // is drawn from (or the nadir ceiling): the near plane stays closer than that ground.
     if (const std::optional<double> ground = terrain_->statistics().nadirGround) {
-        near_ = std::min(near_, 0.3 * (camera.geodetic.height - *ground));
+        near_ = std::min(near_, kNearFraction * (camera.geodetic.height - *ground));
     }
     const glm::dmat4 projection = SceneRenderer::projection(
         camera.verticalFov, double(settings.width) / settings.height, near_, camera.lensShift);

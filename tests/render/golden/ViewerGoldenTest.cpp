@@ -368,15 +368,20 @@ std::filesystem::path prepareVillage(const std::string& name, const std::string&
 // objects"): a walker dropped from a flight over house 4 stands on its flat roof (the
 // roof's height from the buildings source's own triangles), walks west off it onto the
 // terrain and is stopped 0.3 m short of house 2's east wall (the footprint's longitude in
-// village_buildings.geojson).
+// village_buildings.geojson), which then fills the view uncut by the near plane.
 TEST(ViewerGolden, AWalkerStandsOnARoofAndIsStoppedByAWall) {
     const std::filesystem::path folder =
         prepareVillage("walker_village",
                        "camera roof\nwait-tiles\nmode walk\nwait-tiles\nsave-camera on_roof\n"
                        "fly 40 0 0\nwait-tiles\nsave-camera at_wall\nquit\n");
     int levelsWanted = 0;
-    const Status ran =
-        runViewer(folder, [&](const ViewerFrame& frame) { levelsWanted = frame.levelsWanted; });
+    double centreDistance = 0;  // along the view axis, of the last frame's centre pixel
+    const Status ran = runViewer(folder, [&](const ViewerFrame& frame) {
+        levelsWanted = frame.levelsWanted;
+        const float depth =
+            (*frame.depth)[std::size_t(frame.height / 2) * frame.width + frame.width / 2];
+        centreDistance = depth > 0.0f ? frame.near / depth : 1e30;
+    });
     ASSERT_TRUE(ran) << ran.error().message;
 
     dsl::LoadResult loaded = dsl::loadProject(folder / "viewer.sylva");
@@ -416,6 +421,9 @@ TEST(ViewerGolden, AWalkerStandsOnARoofAndIsStoppedByAWall) {
                                    std::cos(atWall.geodetic.latitude) * kDegree;
     EXPECT_NEAR((atWall.geodetic.longitude / kDegree - 19.999772) * metresPerDegree, 0.3, 0.01);
     EXPECT_NEAR(atWall.geodetic.latitude, onRoof.geodetic.latitude, 1e-9);
+    // The wall fills the view at 0.3 m (pitch -5°): the near plane does not cut it open
+    // (at 0.3 x the eye height, 0.51 m, the centre showed the house's far wall inside).
+    EXPECT_NEAR(centreDistance, 0.3 / std::cos(5.0 * kDegree), 0.02);
     const ElevationQuery query(*layers->elevation, tiles);
     Result<double> ground =
         query.groundHeight(atWall.geodetic.latitude, atWall.geodetic.longitude, levelsWanted);
