@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "sylva/core/geo/Ellipsoid.h"
+#include "sylva/core/scene/FrameHoles.h"
 #include "sylva/core/scene/ViewerScript.h"
 #include "sylva/dsl/ProjectLoader.h"
 #include "sylva/render/batch/BatchRenderer.h"
@@ -48,57 +48,6 @@ struct FrameRecord {
     bool refined = false;  // a still view's full-detail refinement, outside the budget
     bool holes = false;
 };
-
-// A hole: a pixel that shows sky (depth 0) although its view ray passes at least
-// `kHoleDepth` metres under the ellipsoid's surface (the ellipsoid made a sphere by
-// scaling z), beyond twice the near plane. Rays that only graze the ellipsoid are not
-// counted: the terrain rings lift their vertices by their cells' sagitta (terrain.vert)
-// so the mesh encloses the surface, but its heights are floats and its relief is
-// bilinear between texels, so a grazing ray may still pass a few metres under it.
-constexpr double kHoleDepth = 50.0;
-
-struct HoleCount {
-    std::size_t pixels = 0;
-    int firstX = -1, firstY = -1;
-};
-
-HoleCount countHoles(const render::ViewerFrame& frame) {
-    HoleCount count;
-    const Camera& camera = *frame.camera;
-    const double scale = Ellipsoid::kSemiMajorAxis / Ellipsoid::kSemiMinorAxis;
-    const glm::dvec3 origin(camera.position.x, camera.position.y, camera.position.z * scale);
-    const double tangent = std::tan(camera.verticalFov / 2);
-    const double aspect = double(frame.width) / frame.height;
-    const double inner = Ellipsoid::kSemiMajorAxis - kHoleDepth;
-    for (int y = 0; y < frame.height; ++y) {
-        for (int x = 0; x < frame.width; ++x) {
-            if ((*frame.depth)[std::size_t(y) * frame.width + x] > 0.0f) {
-                continue;
-            }
-            const glm::dvec3 view((2.0 * (x + 0.5) / frame.width - 1.0) * tangent * aspect,
-                                  (1.0 - 2.0 * (y + 0.5) / frame.height) * tangent, -1.0);
-            glm::dvec3 direction = camera.axes * glm::normalize(view);
-            direction.z *= scale;
-            // |origin + t direction|² = (a − depth)²: the ray reaches kHoleDepth under
-            // the surface (of the sphere the ellipsoid becomes).
-            const double qa = glm::dot(direction, direction);
-            const double qb = 2.0 * glm::dot(origin, direction);
-            const double qc = glm::dot(origin, origin) - inner * inner;
-            const double discriminant = qb * qb - 4 * qa * qc;
-            if (discriminant < 0) {
-                continue;
-            }
-            const double t = (-qb - std::sqrt(discriminant)) / (2 * qa);
-            if (t > 2.0 * frame.near) {
-                if (count.pixels++ == 0) {
-                    count.firstX = x;
-                    count.firstY = y;
-                }
-            }
-        }
-    }
-    return count;
-}
 
 std::string flightScript(const ViewerBenchmarkOptions& options) {
     std::string script = "camera space\nframes 4\ncamera aircraft\nframes 4\n";
@@ -250,17 +199,20 @@ Result<ViewerBenchmarkResult> runViewerBenchmark(const ViewerBenchmarkOptions& o
         record.moved = frame.moved;
         record.level = frame.budgetLevel;
         record.refined = frame.refined;
-        const HoleCount holes = countHoles(frame);
-        record.holes = holes.pixels > 0;
+        // Holes beyond twice the near plane (FrameHoles): nearer, a ray under the
+        // ellipsoid may pass under the camera's own ground legitimately.
+        const FrameHoles holes = FrameHoles::count(*frame.camera, *frame.depth, frame.width,
+                                                   frame.height, 2.0 * frame.near);
+        record.holes = holes.holes > 0;
         frames.push_back(record);
         if (options.trace != nullptr) {
             std::fprintf(options.trace,
                          "frame %zu: t %.2f s, %.1f ms, %s%s%s, budget level %d, terrain levels "
-                         "%d/%d, holes %zu (first at %d,%d)\n",
+                         "%d/%d, holes %d (first at %d,%d)\n",
                          frames.size() - 1, record.end, record.milliseconds,
                          record.moved ? "moved" : "still", record.pending ? ", pending" : "",
                          record.refined ? ", refined" : "", record.level, frame.levelsDrawn,
-                         frame.levelsWanted, holes.pixels, holes.firstX, holes.firstY);
+                         frame.levelsWanted, holes.holes, holes.firstX, holes.firstY);
             if (frame.statistics != nullptr) {
                 // Why the frame is pending, and where its time went.
                 const render::RenderStatistics& s = *frame.statistics;

@@ -113,8 +113,8 @@ protected:
 
     // The true ground is the ellipsoid here, so every ray the count calls deep is below the
     // horizon.
-    HoleCount countHoles(const Camera& c) const {
-        return render::countHoles(c, renderer_->depth(), kWidth, kHeight);
+    FrameHoles countHoles(const Camera& c) const {
+        return FrameHoles::count(c, renderer_->depth(), kWidth, kHeight);
     }
 
     static constexpr int kWidth = 320, kHeight = 180;
@@ -133,7 +133,7 @@ TEST_F(CameraUnderCoarseGround, RaysBelowTheHorizonMeetTheGround) {
         ASSERT_TRUE(terrain.nadirCeiling.has_value()) << "pitch " << pitch;
         EXPECT_LT(*terrain.nadirCeiling, kCameraHeight);
         EXPECT_GT(*terrain.nadirCeiling, kCameraHeight - 10.0);
-        const HoleCount count = countHoles(c);
+        const FrameHoles count = countHoles(c);
         std::printf("pitch %5.1f: %d of %d rays under the surface show sky, ceiling %.2f m\n",
                     pitch, count.holes, count.deepRays, *terrain.nadirCeiling);
         EXPECT_GT(count.deepRays, kWidth * kHeight / 4) << "pitch " << pitch;
@@ -165,7 +165,7 @@ TEST_F(CameraUnderCoarseGround, TheNearPlaneKeepsTheGroundDrawnUnderTheCamera) {
     ASSERT_TRUE(statistics.terrain.nadirGround.has_value());
     EXPECT_NEAR(*statistics.terrain.nadirGround, kCoarseGround, 1e-3);
     EXPECT_LE(renderer_->near(), 0.3 * 1.7 + 1e-6);
-    const HoleCount count = countHoles(c);
+    const FrameHoles count = countHoles(c);
     EXPECT_GT(count.deepRays, kWidth * kHeight / 4);
     EXPECT_EQ(count.holes, 0) << count.holes << " of " << count.deepRays
                               << " rays under the surface show sky";

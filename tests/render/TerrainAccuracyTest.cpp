@@ -306,7 +306,8 @@ TEST_F(TerrainAccuracy, TheLimbSeenFromSpaceHasNoHoles) {
     ASSERT_TRUE(renderer_->render(layers, *evaluator_, c, settings));
     // Every ray points below the camera's horizon, so a line meeting the inner sphere meets
     // it ahead of the camera: the count's ray test is the line test this one made before.
-    const auto [deepRays, holes] = countHoles(c, renderer_->depth(), kWidth, kHeight);
+    const FrameHoles count = FrameHoles::count(c, renderer_->depth(), kWidth, kHeight);
+    const int deepRays = count.deepRays, holes = count.holes;
     EXPECT_GT(deepRays, kWidth * kHeight / 4);
     EXPECT_LT(deepRays, kWidth * kHeight * 3 / 4);  // the limb is in the picture
     EXPECT_EQ(holes, 0) << holes << " of " << deepRays << " rays under the surface show sky";
