@@ -210,7 +210,10 @@ Result<TilePointer> Scheduler::run(std::unique_lock<std::mutex>& lock, const Tas
             ++currentTask_->diskReads;
         } else {
             ++currentTask_->produced;
-            ++currentTask_->producedPerSource[source.name()];
+            if (options_.taskSink) {
+                // A string-keyed count per nested production: only when someone reads it.
+                ++currentTask_->producedPerSource[source.name()];
+            }
         }
     }
     tasks_.erase(id);

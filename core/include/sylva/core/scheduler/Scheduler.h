@@ -86,7 +86,8 @@ struct SchedulerTaskReport {
     double waitSeconds = 0;     // waiting for inputs another thread was producing
     std::size_t produced = 0;   // inputs produced within the task (any depth)
     std::size_t diskReads = 0;  // inputs read from the disk cache within the task
-    // Inputs produced within the task per source name (read from disk not counted).
+    // Inputs produced within the task per source name (read from disk not counted); kept
+    // only when SchedulerOptions::taskSink is set.
     std::map<std::string, std::size_t> producedPerSource;
 };
 
