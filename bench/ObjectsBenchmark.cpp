@@ -14,6 +14,8 @@
 #include <unistd.h>
 
 #include "sylva/core/geo/Ellipsoid.h"
+#include "sylva/core/scene/CameraNavigation.h"
+#include "sylva/core/scene/WalkerCollision.h"
 #include "sylva/core/scheduler/Scheduler.h"
 #include "sylva/core/sources/objects/BuildingsSource.h"
 #include "sylva/core/sources/objects/ObjectsSource.h"
@@ -207,6 +209,72 @@ Result<std::vector<std::vector<FrameSample>>> fly(SceneRenderer& renderer,
     return samples;
 }
 
+// The viewer's walker in the city (issue 20; core/scene/WalkerCollision): MeshCollision
+// over every city tile, each tile's grid built by a first vertical probe through its
+// origin (timed per tile), then walker moves — a 1.5 m step (three wall probes, a slide
+// when blocked) and the standing height after it — from random points of random tiles,
+// standing on whatever is there (ground or roof).
+struct WalkerTiming {
+    double indexMillisecondsPerTile = 0;
+    double stepMilliseconds = 0;
+    double blockedFraction = 0;  // moves a wall shortened
+};
+
+WalkerTiming timeWalker(const std::vector<std::shared_ptr<const MeshTile>>& tiles,
+                        const NoiseSource& terrain) {
+    using Clock = std::chrono::steady_clock;
+    WalkerTiming timing;
+    if (tiles.empty()) {
+        return timing;
+    }
+    MeshCollision collision;
+    collision.setTiles(tiles);
+    const auto indexStart = Clock::now();
+    for (const std::shared_ptr<const MeshTile>& tile : tiles) {
+        const glm::dvec3 up = glm::normalize(tile->boundsCenter);
+        (void)collision.firstHit(tile->boundsCenter + up * tile->boundsRadius,
+                                 tile->boundsCenter - up * tile->boundsRadius);
+    }
+    timing.indexMillisecondsPerTile =
+        std::chrono::duration<double, std::milli>(Clock::now() - indexStart).count() /
+        double(tiles.size());
+    const WalkerBody body;
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> offset(-500.0, 500.0),
+        heading(-std::numbers::pi, std::numbers::pi);
+    constexpr int kMoves = 4000;
+    double seconds = 0;
+    int blocked = 0;
+    for (int move = 0; move < kMoves; ++move) {
+        const MeshTile& tile = *tiles[random() % tiles.size()];
+        const Geodetic centre = Ellipsoid::toGeodetic(tile.boundsCenter);
+        const glm::dmat3 frame = Ellipsoid::localFrame(centre.latitude, centre.longitude);
+        Geodetic at = Ellipsoid::toGeodetic(tile.boundsCenter +
+                                            frame * glm::dvec3(offset(random), offset(random), 0));
+        // The relief's analytic height (as the flight's), not the drawn levels'.
+        const double ground =
+            terrain.height(Ellipsoid::surfaceNormal(at.latitude, at.longitude), 1.0);
+        at.height = WalkerCollision::standingHeight(collision, at.latitude, at.longitude,
+                                                    ground + 300.0, ground - 50.0, body) +
+                    body.eyeHeight;
+        Camera from;
+        from.geodetic = at;
+        from.position = Ellipsoid::toEcef(at);
+        from.axes = Camera::axesFromAngles(at, heading(random), 0.0, 0.0);
+        const Camera to = CameraNavigation::walk(from, 1.5, 0.0);
+        const auto start = Clock::now();
+        const Camera reached = WalkerCollision::step(collision, from, to, body);
+        (void)WalkerCollision::standingHeight(collision, reached.geodetic.latitude,
+                                              reached.geodetic.longitude,
+                                              at.height - body.eyeHeight, ground - 50.0, body);
+        seconds += std::chrono::duration<double>(Clock::now() - start).count();
+        blocked += glm::length(reached.position - to.position) > 1e-3 ? 1 : 0;
+    }
+    timing.stepMilliseconds = seconds * 1e3 / kMoves;
+    timing.blockedFraction = double(blocked) / kMoves;
+    return timing;
+}
+
 }  // namespace
 
 std::string ObjectsBenchmarkResult::json() const {
@@ -237,15 +305,20 @@ Result<ObjectsBenchmarkResult> runObjectsBenchmark(const ShaderLibrary& library,
         return keys.error();
     }
     double triangles = 0;
+    std::vector<std::shared_ptr<const MeshTile>> cityTiles;
     for (const TileKey& key : keys.value()) {
         Result<std::shared_ptr<const MeshTile>> tile = buildings.tile(key, scheduler);
         if (!tile) {
             return tile.error();
         }
         triangles += double(tile.value()->geometry.indices.size() / 3);
+        cityTiles.push_back(tile.value());
     }
     const double buildSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
+    const WalkerTiming walker = timeWalker(cityTiles, elevation);
+    std::fprintf(stderr, "objects: walker in %zu city tiles: %.2f%% of moves blocked\n",
+                 cityTiles.size(), walker.blockedFraction * 100.0);
 
     FeatureSource sites("sites", writeTurbineSites(folder, options.turbines), {});
     ObjectsParameters farm;
@@ -316,6 +389,8 @@ Result<ObjectsBenchmarkResult> runObjectsBenchmark(const ShaderLibrary& library,
         {"terrain_frame_ms", medians[0] * 1e3},
         {"buildings_frame_ms", medians[1] * 1e3},
         {"turbines_frame_ms", medians[2] * 1e3},
+        {"walker_index_ms_per_tile", walker.indexMillisecondsPerTile},
+        {"walker_move_ms", walker.stepMilliseconds},
     };
     return result;
 }
