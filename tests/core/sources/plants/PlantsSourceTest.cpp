@@ -373,31 +373,44 @@ TEST(PlantsSource, SpacingLargerThanCellsIsAnError) {
               "spacing 12 m must be less than the cell size 9.9 m that per_hectare 100 gives");
 }
 
+// Crown markers of `plants`: 3 m discs, coverage only (no image).
+std::unique_ptr<RasterizeSource> crownMarkers(const std::string& name, const PlantsSource& plants) {
+    RasterizeParameters p;
+    p.image = false;
+    p.pointRadius = 3.0;
+    return std::make_unique<RasterizeSource>(name, nullptr, &plants, p);
+}
+
+// Channel 0 summed over the interior texels of a 64 x 64 tile.
+double coveredTexels(const ImageTile& tile) {
+    double covered = 0.0;
+    for (int iy = 0; iy < 64; ++iy) {
+        for (int ix = 0; ix < 64; ++ix) {
+            covered += tile.at(ix, iy, 0);
+        }
+    }
+    return covered;
+}
+
 TEST(PlantsSource, RasterizedCrownsAreSeamless) {
     const ConstantSource ground("ground", 0.0);
     const FunctionMask full(2, [](double, double) { return 1.0f; });
     auto plants = scatter(ground, full, 40.0, 5.0);
-    RasterizeParameters p;
-    p.image = false;
-    p.pointRadius = 3.0;
-    RasterizeSource crowns("crowns", nullptr, plants.get(), p);
+    const std::unique_ptr<RasterizeSource> crowns = crownMarkers("crowns", *plants);
     TileEvaluator evaluator(TileFormat{64, 2});
     const TileKey a = keyAt(17, 2.0, 41.0);
     TileKey b = a;
     b.x += 1;
-    const ImageTile& left = *evaluator.tile(crowns, a).value();
-    const ImageTile& right = *evaluator.tile(crowns, b).value();
+    const ImageTile& left = *evaluator.tile(*crowns, a).value();
+    const ImageTile& right = *evaluator.tile(*crowns, b).value();
     // The right border of `left` equals the first columns of `right`.
-    double covered = 0.0;
     for (int iy = 0; iy < 64; ++iy) {
         for (int i = 0; i < 2; ++i) {
             EXPECT_NEAR(left.at(64 + i, iy, 0), right.at(i, iy, 0), 1e-6);
             EXPECT_NEAR(right.at(-1 - i, iy, 0), left.at(63 - i, iy, 0), 1e-6);
         }
-        for (int ix = 0; ix < 64; ++ix) {
-            covered += left.at(ix, iy, 0);
-        }
     }
+    const double covered = coveredTexels(left);
     // Crown cover ~ density x pi r^2 x scale^2 (1 - overlap): between 15 % and 15 % x 1.1.
     EXPECT_GT(covered / (64 * 64), 0.08);
     EXPECT_LT(covered / (64 * 64), 0.16);
@@ -428,25 +441,16 @@ TEST(PlantsSource, ElevationIsReadOnlyWhereInstancesAreKeptAndNeverForMarkers) {
     const FunctionMask east(3,
                             [](double, double lon) { return lon > 2.01 * kDegree ? 1.0f : 0.0f; });
     auto plants = scatter(ground, east, 40.0, 5.0);
-    RasterizeParameters p;
-    p.image = false;
-    p.pointRadius = 3.0;
-    RasterizeSource markers("markers", nullptr, plants.get(), p);
+    const std::unique_ptr<RasterizeSource> markers = crownMarkers("markers", *plants);
     TileEvaluator evaluator(TileFormat{64, 2});
     const int level = std::max(plants->minimumLevel(), plants->sampleLevel() - 3);
     TileKey key = keyAt(level, 2.0, 41.0);
     ASSERT_LT(key.west(), 2.01 * kDegree);
     ASSERT_GT(key.east(), 2.01 * kDegree);
-    Result<TilePointer> drawn = evaluator.tile(markers, key);
+    Result<TilePointer> drawn = evaluator.tile(*markers, key);
     ASSERT_TRUE(drawn);
-    double covered = 0.0;
-    for (int iy = 0; iy < 64; ++iy) {
-        for (int ix = 0; ix < 64; ++ix) {
-            covered += drawn.value()->at(ix, iy, 0);
-        }
-    }
-    EXPECT_GT(covered, 0.0);            // markers were drawn...
-    EXPECT_EQ(ground.calls.load(), 0);  // ...without a single elevation tile
+    EXPECT_GT(coveredTexels(*drawn.value()), 0.0);  // markers were drawn...
+    EXPECT_EQ(ground.calls.load(), 0);              // ...without a single elevation tile
     // Instance tiles (what the vegetation renderer draws) carry heights, read only from
     // the sample tiles that hold instances: fewer than the tiles the density was read in.
     Result<std::shared_ptr<const InstanceTile>> tile = plants->instances(key, evaluator);
