@@ -169,6 +169,15 @@ protected:
     static Image render(const Camera& c, int width, int height, double band) {
         return render(layers_, c, width, height, band);
     }
+    // One view of `layers` without its plants and with them, and each pixel's distance
+    // (metres, from the bare render's depth): what the band statistics compare.
+    struct BareAndForest {
+        Image bare;
+        Image forest;
+        std::vector<double> distance;
+    };
+    static BareAndForest bareAndForest(const TerrainLayers& layers, const Camera& c, int width,
+                                       int height, double fov, double band);
     static Image render(const TerrainLayers& layers, const Camera& c, int width, int height,
                         double band, std::optional<PlantDate> date = std::nullopt) {
         Result<RenderSetup> setup = RenderSetup::fromModel(*model_, width, height);
@@ -410,6 +419,18 @@ std::vector<double> distances(const std::vector<float>& depth, double near, int 
     return out;
 }
 
+FarFieldGolden::BareAndForest FarFieldGolden::bareAndForest(const TerrainLayers& layers,
+                                                            const Camera& c, int width, int height,
+                                                            double fov, double band) {
+    TerrainLayers bareLayers = layers;
+    bareLayers.plants.clear();
+    BareAndForest out;
+    out.bare = render(bareLayers, c, width, height, band);
+    out.distance = distances(renderer_->depth(), renderer_->near(), width, height, fov);
+    out.forest = render(layers, c, width, height, band);
+    return out;
+}
+
 BandStatistics bandStatistics(const Image& forest, const Image& bare,
                               const std::vector<double>& distance, int width, double from,
                               double to) {
@@ -452,12 +473,7 @@ TEST_F(FarFieldGolden, HandOverShowsNoBand) {
     constexpr int kWidth = 480, kHeight = 270;
     const double fov = 20.0 * kDegree;
     const Camera c = aircraft(fov);
-    TerrainLayers bareLayers = layers_;
-    bareLayers.plants.clear();
-    const Image bare = render(bareLayers, c, kWidth, kHeight, 500.0);
-    const std::vector<double> distance =
-        distances(renderer_->depth(), renderer_->near(), kWidth, kHeight, fov);
-    const Image forest = render(layers_, c, kWidth, kHeight, 500.0);
+    const auto [bare, forest, distance] = bareAndForest(layers_, c, kWidth, kHeight, fov, 500.0);
     const FarFieldFrame frame = renderer_->statistics().farField;
     ASSERT_TRUE(frame.drawn);
     if (std::getenv("SYLVA_HANDOVER_DUMP") != nullptr) {
@@ -555,12 +571,9 @@ TEST_F(FarFieldGolden, SmallTreesKeepTheirCover) {
     constexpr int kWidth = 320, kHeight = 180, kFactor = 4;
     const double fov = 20.0 * kDegree;
     const Camera c = aircraft(fov);
+    const auto [bare, forest, distance] = bareAndForest(mixed_, c, kWidth, kHeight, fov, 0.0);
     TerrainLayers bareLayers = mixed_;
     bareLayers.plants.clear();
-    const Image bare = render(bareLayers, c, kWidth, kHeight, 0.0);
-    const std::vector<double> distance =
-        distances(renderer_->depth(), renderer_->near(), kWidth, kHeight, fov);
-    const Image forest = render(mixed_, c, kWidth, kHeight, 0.0);
     const Image bareLarge =
         downsample(render(bareLayers, c, kWidth * kFactor, kHeight * kFactor, 0.0), kFactor);
     const Image forestLarge =
