@@ -19,6 +19,25 @@ void sliceSphere(double near, double far, double k, double& center, double& radi
     radius = std::sqrt((far - center) * (far - center) + k2 * far * far);
 }
 
+// The camera-relative box centre and the projection of `cascade`'s Earth-fixed box
+// (boxLight, radius) seen from `camera`.
+void placeBox(ShadowCascade& cascade, const Camera& camera, const glm::dmat3& light) {
+    const glm::dvec3 box = cascade.boxLight - light * camera.position;
+    cascade.boxRelative = glm::transpose(light) * box;
+    const double radius = cascade.radius;
+    const double depthNear = box.z + 2.0 * radius;  // towards the sun
+    const double depthFar = box.z - radius;
+    glm::dmat4 projection(0.0);
+    projection[0][0] = 1.0 / radius;
+    projection[3][0] = -box.x / radius;
+    projection[1][1] = 1.0 / radius;
+    projection[3][1] = -box.y / radius;
+    projection[2][2] = -1.0 / (depthNear - depthFar);
+    projection[3][2] = depthNear / (depthNear - depthFar);
+    projection[3][3] = 1.0;
+    cascade.projection = projection;
+}
+
 ShadowCascade makeCascade(const Camera& camera, const glm::dmat3& light, double near, double far,
                           double k, const ShadowSettings& settings) {
     ShadowCascade cascade;
@@ -47,7 +66,6 @@ ShadowCascade makeCascade(const Camera& camera, const glm::dmat3& light, double 
     // Snap in absolute light coordinates (double), then return to camera-relative ones:
     // the texel grid (and the cell grid, whole texels from the same origin) is fixed to
     // the Earth, not to the camera.
-    const glm::dvec3 cameraLight = light * camera.position;
     const glm::dvec3 absolute = light * (camera.position + cascade.centerRelative);
     // Depth too (whole texels along the sun): a map's depths are then those of the
     // Earth-fixed box, whatever the camera's position, so ShadowMaps can keep a cascade's
@@ -56,19 +74,7 @@ ShadowCascade makeCascade(const Camera& camera, const glm::dmat3& light, double 
                              std::floor(absolute.y / cell + 0.5) * cell,
                              std::floor(absolute.z / cell + 0.5) * cell);
     cascade.boxLight = snapped;
-    const glm::dvec3 box = snapped - cameraLight;
-    cascade.boxRelative = glm::transpose(light) * box;
-    const double depthNear = box.z + 2.0 * radius;  // towards the sun
-    const double depthFar = box.z - radius;
-    glm::dmat4 projection(0.0);
-    projection[0][0] = 1.0 / radius;
-    projection[3][0] = -box.x / radius;
-    projection[1][1] = 1.0 / radius;
-    projection[3][1] = -box.y / radius;
-    projection[2][2] = -1.0 / (depthNear - depthFar);
-    projection[3][2] = depthNear / (depthNear - depthFar);
-    projection[3][3] = 1.0;
-    cascade.projection = projection;
+    placeBox(cascade, camera, light);
     return cascade;
 }
 
@@ -122,6 +128,17 @@ std::vector<ShadowCascade> ShadowCascades::fit(const Camera& camera, double aspe
         cascades.push_back(terrain);
     }
     return cascades;
+}
+
+ShadowCascade ShadowCascades::reexpressed(const ShadowCascade& cascade, const Camera& camera,
+                                          const glm::dmat3& light) {
+    ShadowCascade moved = cascade;
+    // The slice's sphere follows the camera (on its view axis, at the same distance); the
+    // box stays where its map was drawn, and may no longer hold the sphere: the shading
+    // then falls through to the next cascade whose box holds the point.
+    moved.centerRelative = -glm::length(cascade.centerRelative) * camera.axes[2];
+    placeBox(moved, camera, light);
+    return moved;
 }
 
 }  // namespace sylva::render

@@ -42,6 +42,7 @@ Status ShadowMaps::ensureTexture(int resolution) {
     texture_ = std::move(texture);
     cache_ = std::move(cache);
     std::fill(std::begin(cacheValid_), std::end(cacheValid_), false);
+    std::fill(std::begin(layerValid_), std::end(layerValid_), false);
     resolution_ = resolution;
     glNamedFramebufferDrawBuffer(framebuffer_.get(), GL_NONE);
     glNamedFramebufferReadBuffer(framebuffer_.get(), GL_NONE);
@@ -62,6 +63,7 @@ Status ShadowMaps::render(const Camera& camera, double aspect, const glm::dvec3&
                           const std::vector<ShadowCaster*>& casters) {
     cascades_ = ShadowCascades::fit(camera, aspect, sunDirection, settings);
     if (cascades_.empty()) {
+        std::fill(std::begin(layerValid_), std::end(layerValid_), false);  // nothing to keep
         return Status::success();
     }
     SYLVA_CHECK(int(cascades_.size()) <= kMaxCascades);
@@ -70,6 +72,22 @@ Status ShadowMaps::render(const Camera& camera, double aspect, const glm::dvec3&
         return status;
     }
     lightRotation_ = ShadowCascades::lightRotation(sunDirection);
+    const bool sameSun = lightRotation_ == previousLight_;
+    // Keys first: which cascades are out of date, and which of those wait their turn.
+    std::vector<ShadowView> views(cascades_.size());
+    std::vector<CascadeCasters> work;
+    for (std::size_t i = 0; i < cascades_.size(); ++i) {
+        ShadowView& view = views[i];
+        view.camera = &camera;
+        view.lightRotation = lightRotation_;
+        view.projection = cascades_[i].projection;
+        view.sunDirection = glm::normalize(sunDirection);
+        view.cascade = &cascades_[i];
+        view.cascadeIndex = int(i);
+        view.resolution = resolution_;
+        work.push_back(castersOf(i, view, casters));
+    }
+    const std::vector<bool> keep = cascadesToKeep(work, settings.maximumRedraws, sameSun);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
     glViewport(0, 0, resolution_, resolution_);
@@ -79,26 +97,30 @@ Status ShadowMaps::render(const Camera& camera, double aspect, const glm::dvec3&
     glEnable(GL_DEPTH_CLAMP);
     glDisable(GL_CULL_FACE);
     cachedCascades_ = 0;
+    keptCascades_ = 0;
     for (std::size_t i = 0; i < cascades_.size(); ++i) {
+        if (keep[i]) {
+            // The layer holds the map of the previous box: that box, seen from here.
+            cascades_[i] = ShadowCascades::reexpressed(previous_[i], camera, lightRotation_);
+            ++keptFor_[i];
+            ++keptCascades_;
+            continue;
+        }
         glNamedFramebufferTextureLayer(framebuffer_.get(), GL_DEPTH_ATTACHMENT, texture_.get(), 0,
                                        GLint(i));
-        ShadowView view;
-        view.camera = &camera;
-        view.lightRotation = lightRotation_;
-        view.projection = cascades_[i].projection;
-        view.sunDirection = glm::normalize(sunDirection);
-        view.cascade = &cascades_[i];
-        view.cascadeIndex = int(i);
-        view.resolution = resolution_;
-        drawCascade(i, view, casters);
+        drawCascade(i, views[i], work[i]);
+        keptFor_[i] = 0;
+        layerValid_[i] = true;
     }
+    previous_ = cascades_;
+    previousLight_ = lightRotation_;
     glDisable(GL_DEPTH_CLAMP);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return Status::success();
 }
 
-void ShadowMaps::drawCascade(std::size_t index, const ShadowView& view,
-                             const std::vector<ShadowCaster*>& casters) {
+ShadowMaps::CascadeCasters ShadowMaps::castersOf(std::size_t index, const ShadowView& view,
+                                                 const std::vector<ShadowCaster*>& casters) const {
     // The key: the Earth-fixed box (its depths do not depend on the camera, ShadowCascades),
     // the sun and every cacheable caster's own state.
     ContentHash hash;
@@ -110,35 +132,70 @@ void ShadowMaps::drawCascade(std::size_t index, const ShadowView& view,
             hash.add(view.lightRotation[column][row]);
         }
     }
-    std::vector<ShadowCaster*> cached, drawn;
+    CascadeCasters out;
     for (ShadowCaster* caster : casters) {
         if (std::optional<std::uint64_t> key = caster->shadowCacheKey(view)) {
             hash.add(*key);
-            cached.push_back(caster);
+            out.cached.push_back(caster);
         } else {
-            drawn.push_back(caster);
+            out.drawn.push_back(caster);
         }
     }
-    const std::uint64_t key = hash.value();
+    out.key = hash.value();
+    out.outOfDate = !out.cached.empty() && !(cacheValid_[index] && cacheKeys_[index] == out.key);
+    return out;
+}
+
+std::vector<bool> ShadowMaps::cascadesToKeep(const std::vector<CascadeCasters>& work,
+                                             int maximumRedraws, bool sameSun) const {
+    std::vector<bool> keep(work.size(), false);
+    if (maximumRedraws <= 0) {
+        return keep;
+    }
+    // Out-of-date cascades in the order they are redrawn: the finest (what the eye sees
+    // nearest), then the ones kept longest (none waits for ever).
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < work.size(); ++i) {
+        if (work[i].outOfDate) {
+            order.push_back(i);
+        }
+    }
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        if ((a == 0) != (b == 0)) {
+            return a == 0;
+        }
+        return keptFor_[a] > keptFor_[b];
+    });
+    for (std::size_t k = std::size_t(maximumRedraws); k < order.size(); ++k) {
+        const std::size_t i = order[k];
+        // Only a layer that holds a map of this cascade's kind under this sun can wait.
+        keep[i] = sameSun && layerValid_[i] && i < previous_.size() &&
+                  previous_[i].terrainOnly == cascades_[i].terrainOnly;
+    }
+    return keep;
+}
+
+void ShadowMaps::drawCascade(std::size_t index, const ShadowView& view,
+                             const CascadeCasters& casters) {
     const GLint layer = GLint(index);
-    if (!cached.empty() && cacheValid_[index] && cacheKeys_[index] == key) {
+    if (!casters.cached.empty() && !casters.outOfDate) {
         glCopyImageSubData(cache_.get(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, texture_.get(),
                            GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, resolution_, resolution_, 1);
         ++cachedCascades_;
     } else {
         const float one = 1.0f;
         glClearNamedFramebufferfv(framebuffer_.get(), GL_DEPTH, 0, &one);
-        for (ShadowCaster* caster : cached) {
+        for (ShadowCaster* caster : casters.cached) {
             caster->drawShadow(view);
         }
-        cacheValid_[index] = !cached.empty();
-        cacheKeys_[index] = key;
-        if (!cached.empty()) {
+        cacheValid_[index] = !casters.cached.empty();
+        cacheKeys_[index] = casters.key;
+        if (!casters.cached.empty()) {
             glCopyImageSubData(texture_.get(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, cache_.get(),
                                GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, resolution_, resolution_, 1);
         }
     }
-    for (ShadowCaster* caster : drawn) {
+    for (ShadowCaster* caster : casters.drawn) {
         caster->drawShadow(view);
     }
 }

@@ -222,6 +222,39 @@ TEST(ShadowCascades, SplitsAndTexelSnapping) {
 // centre stays on the Earth-fixed texel grid, and it moves only when the sphere's centre
 // crosses a cell: at most once per cell of the centre's path on each axis, where the
 // former texel snapping (margin 0, checked too) moved the finest box at almost every step.
+// A cascade kept for a moved camera (ShadowCascades::reexpressed) maps every point of the
+// Earth to the same shadow-map texel and depth as when its map was drawn.
+TEST(ShadowCascades, AKeptCascadeMapsThePointsWhereItsMapWasDrawn) {
+    Camera before;
+    before.geodetic = {47.3 * kDegree, 8.5 * kDegree, 421.7};
+    before.position = Ellipsoid::toEcef(before.geodetic);
+    before.axes = Camera::axesFromAngles(before.geodetic, 0.3, -0.05, 0.0);
+    before.verticalFov = 50 * kDegree;
+    Camera after = before;
+    after.geodetic.latitude += 300.0 / Ellipsoid::kMeanRadius;  // 300 m north, turned
+    after.position = Ellipsoid::toEcef(after.geodetic);
+    after.axes = Camera::axesFromAngles(after.geodetic, 1.1, -0.2, 0.0);
+    const glm::dvec3 sun = glm::normalize(glm::dvec3(0.3, 0.5, 0.8));
+    const glm::dmat3 light = ShadowCascades::lightRotation(sun);
+    const std::vector<ShadowCascade> drawn =
+        ShadowCascades::fit(before, 16.0 / 9, sun, ShadowSettings{});
+    for (const ShadowCascade& cascade : drawn) {
+        const ShadowCascade kept = ShadowCascades::reexpressed(cascade, after, light);
+        EXPECT_EQ(kept.boxLight, cascade.boxLight);
+        EXPECT_EQ(kept.radius, cascade.radius);
+        for (const glm::dvec3 offset :
+             {glm::dvec3(0.0), glm::dvec3(120.0, -40.0, 15.0), glm::dvec3(-900.0, 350.0, -60.0)}) {
+            const glm::dvec3 point = before.position + cascade.boxRelative + offset;
+            const glm::dvec4 then =
+                cascade.projection * glm::dvec4(light * (point - before.position), 1.0);
+            const glm::dvec4 now =
+                kept.projection * glm::dvec4(light * (point - after.position), 1.0);
+            EXPECT_LT(glm::length(then - now), 1e-9) << "radius " << cascade.radius;
+        }
+        EXPECT_NEAR(glm::length(kept.centerRelative), glm::length(cascade.centerRelative), 1e-9);
+    }
+}
+
 TEST(ShadowCascades, BoxesHoldTheirSlicesAndStayUnderSmallSteps) {
     Camera camera;
     camera.geodetic = {47.3 * kDegree, 8.5 * kDegree, 421.7};
@@ -470,6 +503,63 @@ TEST_F(ShadowTest, TerrainDepthIsCachedWhileTheCascadeBoxesStay) {
     settings.sunDirection = sunAt(camera.geodetic, 5 * kDegree, 250 * kDegree);
     (void)render(layers, camera, settings);
     EXPECT_EQ(renderer_->shadowMaps().cachedCascades(), 0);
+}
+
+// ShadowSettings::maximumRedraws (the viewer's interactive frames): after a 2 km move
+// every cascade is out of date, but only one is redrawn a render (the finest first); the
+// others keep their last maps, re-expressed, until their turn, and once all had theirs
+// the image equals the one of the same history redrawn at once.
+TEST_F(ShadowTest, OutOfDateCascadesAreRedrawnInTurnAndCatchUp) {
+    Camera camera;
+    camera.geodetic = {46.2 * kDegree, 7.3 * kDegree, 0.0};
+    camera.geodetic.height =
+        hillHeight(camera.geodetic.latitude, camera.geodetic.longitude, 250.0) + 400.0;
+    camera.position = Ellipsoid::toEcef(camera.geodetic);
+    camera.axes = Camera::axesFromAngles(camera.geodetic, 30 * kDegree, -20 * kDegree, 0.0);
+    camera.verticalFov = 60 * kDegree;
+    RenderSettings settings;
+    settings.width = 160;
+    settings.height = 90;
+    settings.ocean = false;
+    settings.atmosphere = false;
+    settings.sunVisibilityOutput = true;
+    settings.sunDirection = sunAt(camera.geodetic, 6 * kDegree, 250 * kDegree);
+    settings.shadows.maximumRedraws = 1;
+    const TerrainLayers layers{hills_, nullptr, hillNormals_, {}, {}};
+    (void)render(layers, camera, settings);
+    const ShadowMaps& maps = renderer_->shadowMaps();
+    const int cascades = int(maps.cascades().size());
+    ASSERT_EQ(cascades, 5);
+    EXPECT_EQ(maps.keptCascades(), 0) << "nothing drawn before: nothing to keep";
+    Camera moved = camera;
+    moved.position += camera.axes[0] * 2000.0;
+    moved.geodetic = Ellipsoid::toGeodetic(moved.position);
+    moved.geodetic.height =
+        hillHeight(moved.geodetic.latitude, moved.geodetic.longitude, 250.0) + 400.0;
+    moved.position = Ellipsoid::toEcef(moved.geodetic);
+    (void)render(layers, moved, settings);
+    const int outOfDate = cascades - maps.cachedCascades();
+    ASSERT_GE(outOfDate, 3) << "the move leaves most boxes";
+    EXPECT_EQ(maps.keptCascades(), outOfDate - 1);
+    Image caughtUp;
+    int renders = 1;
+    while (maps.keptCascades() > 0 && renders < 10) {
+        caughtUp = render(layers, moved, settings);
+        ++renders;
+    }
+    EXPECT_EQ(renders, outOfDate) << "one cascade redrawn per render";
+    caughtUp = render(layers, moved, settings);  // every layer up to date: copies only
+    EXPECT_EQ(maps.cachedCascades(), cascades);
+    // The same history without the bound (another sun first empties the cache): the
+    // cascades whose boxes stayed keep the depth drawn from the first camera in both.
+    settings.shadows.maximumRedraws = 0;
+    settings.sunDirection = sunAt(camera.geodetic, 30 * kDegree, 100 * kDegree);
+    (void)render(layers, camera, settings);
+    settings.sunDirection = sunAt(camera.geodetic, 6 * kDegree, 250 * kDegree);
+    (void)render(layers, camera, settings);
+    const Image unbounded = render(layers, moved, settings);
+    EXPECT_EQ(maps.keptCascades(), 0);
+    EXPECT_EQ(caughtUp.pixels, unbounded.pixels);
 }
 
 // A moving camera keeps the cached depth (ShadowSettings::recentreMargin, the terrain's

@@ -48,6 +48,13 @@ struct ShadowSettings {
     // texel by texel (every move of a texel redraws the cascade). Costs (1 + margin)
     // times larger texels.
     double recentreMargin = 0.125;
+    // Cascades redrawn per ShadowMaps::render at most when their cached depth is out of
+    // date (0: every one). The others keep their last map, re-expressed for the camera
+    // (the same Earth-fixed box), until their turn — the finest first, then the longest
+    // kept: interactive frames bound the shadow pass (issue 20's frame budget: redraws as
+    // plant tiles arrived were 106-177 ms of a 230-380 ms frame), at the price of shadows
+    // a few frames late while the view moves. Screenshots and batch images: 0.
+    int maximumRedraws = 0;
 };
 
 struct ShadowCascade {
@@ -80,6 +87,11 @@ public:
     static std::vector<ShadowCascade> fit(const Camera& camera, double aspect,
                                           const glm::dvec3& sunDirection,
                                           const ShadowSettings& settings);
+    // `cascade`, fitted for another camera, seen from `camera` (the same `light`): its
+    // Earth-fixed box, depth range and texels unchanged, its camera-relative centres and
+    // projection re-expressed — so a map drawn for it stays valid.
+    static ShadowCascade reexpressed(const ShadowCascade& cascade, const Camera& camera,
+                                     const glm::dmat3& light);
 };
 
 }  // namespace sylva::render

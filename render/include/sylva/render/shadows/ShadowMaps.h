@@ -45,6 +45,9 @@ public:
     std::uint32_t texture() const { return texture_.get(); }
     // Cascades of the last render() whose cached casters' depth was copied, not drawn.
     int cachedCascades() const { return cachedCascades_; }
+    // Cascades of the last render() left as they were (out of date, over
+    // ShadowSettings::maximumRedraws): their last map, re-expressed for the camera.
+    int keptCascades() const { return keptCascades_; }
     const glm::dmat3& lightRotation() const { return lightRotation_; }
     int resolution() const { return resolution_; }
 
@@ -58,16 +61,35 @@ private:
     ShadowMaps() = default;
     Status ensureTexture(int resolution);
 
+    // The casters of one cascade: those with a cache key (and the key of the box, the sun
+    // and theirs), the others drawn every time.
+    struct CascadeCasters {
+        std::uint64_t key = 0;
+        std::vector<ShadowCaster*> cached, drawn;
+        bool outOfDate = false;  // cached casters whose depth must be drawn again
+    };
+    CascadeCasters castersOf(std::size_t index, const ShadowView& view,
+                             const std::vector<ShadowCaster*>& casters) const;
+    // Which out-of-date cascades keep their last map this time (ShadowSettings::
+    // maximumRedraws: the finest first, then those kept longest, are redrawn).
+    std::vector<bool> cascadesToKeep(const std::vector<CascadeCasters>& work, int maximumRedraws,
+                                     bool sameSun) const;
     // Draws cascade `index` (its layer bound, not cleared): the cached casters' depth from
     // cache_ when their key matches, else drawn and kept; then the other casters.
-    void drawCascade(std::size_t index, const ShadowView& view,
-                     const std::vector<ShadowCaster*>& casters);
+    void drawCascade(std::size_t index, const ShadowView& view, const CascadeCasters& casters);
 
     GlTexture texture_;
     GlTexture cache_;  // the cached casters' depth per cascade (same format)
     std::uint64_t cacheKeys_[kMaxCascades] = {};
     bool cacheValid_[kMaxCascades] = {};
     int cachedCascades_ = 0;
+    int keptCascades_ = 0;
+    // The cascades the layers of texture_ were last drawn (or kept) for, and per layer
+    // whether it holds a map for them and for how many renders it was kept.
+    std::vector<ShadowCascade> previous_;
+    glm::dmat3 previousLight_{0.0};
+    bool layerValid_[kMaxCascades] = {};
+    int keptFor_[kMaxCascades] = {};
     GlFramebuffer framebuffer_;
     int resolution_ = 0;
     glm::dmat3 lightRotation_{1.0};
