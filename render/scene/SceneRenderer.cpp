@@ -537,6 +537,11 @@ double SceneRenderer::meterEv100(const Camera& camera, double groundHeight,
     return ev100FromIlluminance(luminance(shading_->horizontalIlluminance(point, sun, atmosphere)));
 }
 
+Status SceneRenderer::prepareSpecies(const TerrainLayers& layers) {
+    Result<std::vector<VegetationStreamLayer>> prepared = vegetationLayers(layers, true);
+    return prepared ? Status::success() : Status(prepared.error());
+}
+
 Result<std::optional<std::uint32_t>> SceneRenderer::speciesFor(const PlantModelSource& model,
                                                                bool wait) {
     const std::uint64_t hash = model.contentHash();

@@ -1,5 +1,7 @@
 #include "sylva/render/viewer/FrameBudget.h"
 
+#include "sylva/core/base/Check.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -36,8 +38,8 @@ double FrameBudget::scaleOf(int level) {
     return std::pow(std::sqrt(0.5), steps);
 }
 
-VegetationSettings FrameBudget::settingsFor(const VegetationSettings& settings) const {
-    const int level = vegetationLevel(level_);
+VegetationSettings FrameBudget::settingsAt(const VegetationSettings& settings, int budgetLevel) {
+    const int level = vegetationLevel(budgetLevel);
     VegetationSettings out = settings;
     out.quality = settings.quality / std::pow(kQualityStep, level);
     out.minimumPixels = settings.minimumPixels * std::pow(kPixelStep, level);
@@ -49,6 +51,11 @@ double FrameBudget::predict(int level) const {
     const double perPrimitive = std::max(millisecondsPerPrimitive_, 0.0);
     return fixed + perPrimitive * primitives_ *
                        std::pow(ratio_, vegetationLevel(level) - vegetationLevel(level_));
+}
+
+void FrameBudget::startAt(int level) {
+    SYLVA_CHECK(fixedMilliseconds_ < 0 && level >= 0 && level < kLevels);
+    level_ = budget_ > 0 ? level : 0;
 }
 
 void FrameBudget::record(const FrameMeasurement& frame) {
@@ -83,7 +90,10 @@ void FrameBudget::record(const FrameMeasurement& frame) {
         changeLevel(std::min(coarser, kLevels - 1));
         return;
     }
-    if (level_ > 0 && predict(level_ - 1) < budget_ * kFinerMargin) {
+    // Finer only while the camera moves: a still view is refined at full detail by the
+    // viewer once its tiles are in, and while they arrive its frames' costs jump with
+    // them (issue 20's bench: a cold still view went 10 -> 9 -> 10, a reversal).
+    if (frame.cameraMoved && level_ > 0 && predict(level_ - 1) < budget_ * kFinerMargin) {
         if (++finerVotes_ >= kFinerVotes) {
             changeLevel(level_ - 1);
         }

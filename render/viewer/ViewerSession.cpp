@@ -28,6 +28,14 @@ constexpr int kSideBySideGap = 4;
 constexpr double kStillRedrawSeconds = 0.5;
 // Texels per side of each shadow cascade in interactive frames (at most).
 constexpr int kInteractiveShadowResolution = 1024;
+// Out-of-date shadow cascades redrawn per interactive frame (ShadowSettings::maximumRedraws).
+constexpr int kInteractiveShadowRedraws = 2;
+
+// What the frame budget counts as the vegetation's primitives.
+std::size_t primitivesOf(const RenderStatistics& statistics) {
+    return statistics.vegetation.ellipsoids + statistics.vegetation.lines +
+           statistics.vegetation.meshInstances + statistics.vegetation.billboardInstances;
+}
 
 const char* modeName(NavigationMode mode) {
     switch (mode) {
@@ -96,7 +104,42 @@ Status ViewerSession::start() {
         mode_ = NavigationMode::Orbit;
     }
     watchFiles();
+    if (options_.budgetMilliseconds > 0) {
+        prepare();
+    }
     return {};
+}
+
+void ViewerSession::prepare() {
+    const auto start = std::chrono::steady_clock::now();
+    // A species that fails to build is reported by the frames, as without preparing.
+    if (Status species = renderer_->prepareSpecies(layers_); !species) {
+        showError(species.error().message);
+    }
+    // The first frame at the coarsest level, its cost the budget's first measurement
+    // (the loop's first frame then starts from a model, not from full detail: drawn at
+    // level 0 it was the longest frame of the bench's flight, ~1 s).
+    budget_.startAt(FrameBudget::kLevels - 1);
+    RenderSettings settings = frameSettings(false, budget_.level());
+    settings.waitForTiles = false;
+    const auto frameStart = std::chrono::steady_clock::now();
+    if (Result<Image> image = renderScenario(layers_, settings); !image) {
+        showError(image.error().message);
+    } else {
+        const RenderStatistics& statistics = renderer_->statistics();
+        FrameMeasurement measurement;
+        measurement.frameMilliseconds =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart)
+                .count();
+        measurement.vegetationMilliseconds = statistics.vegetationPassSeconds * 1000.0;
+        measurement.primitives = primitivesOf(statistics);
+        budget_.record(measurement);
+    }
+    startupSeconds_ =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(options_.log, "prepared in %.2f s (plant species, first frame)\n",
+                 startupSeconds_);
+    std::fflush(options_.log);
 }
 
 void ViewerSession::setFrameSize(int width, int height) {
@@ -446,9 +489,46 @@ Result<Image> ViewerSession::compose(Image first, Image second) const {
     return out;
 }
 
+RenderSettings ViewerSession::frameSettings(bool full, int level) const {
+    RenderSettings settings = setup_.settings;
+    // Interactive frames past the vegetation's coarsest budget level draw fewer pixels
+    // (FrameBudget::renderScale); the window enlarges them. Screenshots: the window's.
+    const double scale = full ? 1.0 : FrameBudget::scaleOf(level);
+    const int width = std::max(int(std::lround(width_ * scale)), 1);
+    settings.width = width;
+    settings.height = std::max(int(std::lround(height_ * scale)), 1);
+    settings.levelRows = height_;
+    if (comparison_ == ComparisonMode::SideBySide) {
+        settings.width = std::max((width - kSideBySideGap) / 2, 1);
+    }
+    settings.sunDirection = sun_;
+    settings.atmosphere = setup_.settings.atmosphere && atmosphereLayer_;
+    VegetationSettings vegetation = settings.vegetation;
+    vegetation.quality *= qualityScale_;
+    // Screenshots are full detail (as a batch image); interactive frames fit the budget.
+    settings.vegetation = full ? vegetation : FrameBudget::settingsAt(vegetation, level);
+    if (!full) {
+        // The shadow cascades were half of an interactive frame on llvmpipe (issue 20's
+        // trace: ~300 of ~600 ms at 320x180 with five 2048² depth passes); a quarter of
+        // the texels while interacting, the project's resolution in screenshots.
+        settings.shadows.resolution =
+            std::min(settings.shadows.resolution, kInteractiveShadowResolution);
+        // And at most two out-of-date cascades redrawn a frame (the finest, then the one
+        // kept longest): as plant tiles arrived during a walk every cascade was redrawn,
+        // 106-177 ms of 230-380 ms frames at the coarsest budget level (issue 20's bench).
+        settings.shadows.maximumRedraws = kInteractiveShadowRedraws;
+        // With a budget the vegetation cannot meet any more (its coarsest level), the
+        // screen-space ambient occlusion goes too: at 1280x720 on llvmpipe it was the
+        // largest pass of a frame (1.1-4.3 s of 2.7-6 s at load 8-11, issue 20's trace).
+        if (options_.budgetMilliseconds > 0 && level >= FrameBudget::kVegetationLevels - 1) {
+            settings.ambientOcclusion.enabled = false;
+        }
+    }
+    return settings;
+}
+
 Status ViewerSession::renderFrame(bool waitForTiles) {
     settleOnGround(waitForTiles);
-    RenderSettings settings = setup_.settings;
     // A still view whose tiles were all drawn by the last frame is refined: drawn at full
     // detail and resolution (not measured for the budget) until it changes again. Full
     // detail asks for tiles of its own (finer plants, a larger shadow map's casters); a
@@ -459,37 +539,8 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
                         options_.budgetMilliseconds > 0 && frames_ > 0;
     refining_ = refine;
     const bool full = waitForTiles || refine;
-    // Interactive frames past the vegetation's coarsest budget level draw fewer pixels
-    // (FrameBudget::renderScale); the window enlarges them. Screenshots: the window's.
-    const double scale = full ? 1.0 : budget_.renderScale();
-    const int width = std::max(int(std::lround(width_ * scale)), 1);
-    settings.width = width;
-    settings.height = std::max(int(std::lround(height_ * scale)), 1);
-    settings.levelRows = height_;
-    if (comparison_ == ComparisonMode::SideBySide) {
-        settings.width = std::max((width - kSideBySideGap) / 2, 1);
-    }
-    settings.sunDirection = sun_;
-    settings.atmosphere = setup_.settings.atmosphere && atmosphereLayer_;
+    RenderSettings settings = frameSettings(full, budget_.level());
     settings.waitForTiles = waitForTiles;
-    VegetationSettings vegetation = settings.vegetation;
-    vegetation.quality *= qualityScale_;
-    // Screenshots are full detail (as a batch image); interactive frames fit the budget.
-    settings.vegetation = full ? vegetation : budget_.settingsFor(vegetation);
-    if (!full) {
-        // The shadow cascades were half of an interactive frame on llvmpipe (issue 20's
-        // trace: ~300 of ~600 ms at 320x180 with five 2048² depth passes); a quarter of
-        // the texels while interacting, the project's resolution in screenshots.
-        settings.shadows.resolution =
-            std::min(settings.shadows.resolution, kInteractiveShadowResolution);
-        // With a budget the vegetation cannot meet any more (its coarsest level), the
-        // screen-space ambient occlusion goes too: at 1280x720 on llvmpipe it was the
-        // largest pass of a frame (1.1-4.3 s of 2.7-6 s at load 8-11, issue 20's trace).
-        if (options_.budgetMilliseconds > 0 &&
-            budget_.level() >= FrameBudget::kVegetationLevels - 1) {
-            settings.ambientOcclusion.enabled = false;
-        }
-    }
     const bool moved = dirty_;
     reduced_ = !full && budget_.level() > 0;
     finishedAtFrame_ = scheduler_->finishedTasks();
@@ -542,9 +593,7 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
     FrameMeasurement measurement;
     measurement.frameMilliseconds = milliseconds;
     measurement.vegetationMilliseconds = statistics.vegetationPassSeconds * 1000.0;
-    measurement.primitives = statistics.vegetation.ellipsoids + statistics.vegetation.lines +
-                             statistics.vegetation.meshInstances +
-                             statistics.vegetation.billboardInstances;
+    measurement.primitives = primitivesOf(statistics);
     measurement.cameraMoved = moved;
     if (!waitForTiles) {
         const int level = refine ? 0 : budget_.level();
@@ -557,6 +606,7 @@ Status ViewerSession::renderFrame(bool waitForTiles) {
             frame.pending = report_.pending;
             frame.moved = moved;
             frame.budgetLevel = level;
+            frame.startupSeconds = startupSeconds_;
             frame.refined = refine;
             frame.instancesDrawn = report_.instancesDrawn;
             frame.levelsDrawn = report_.levelsDrawn;

@@ -50,8 +50,10 @@ TEST(FrameBudget, SettlesOnTheFinestLevelThatFitsWithoutOscillating) {
 // resolution levels, settle on the first that fits (a quarter of the pixels: 100 + 50 ms
 // ... above 150 ms, so an eighth: 50 + 50 ms) without reversals, and come back to full
 // resolution and detail when the fixed part shrinks.
-FrameMeasurement frameWithPixels(const FrameBudget& budget, double fixedAtFullResolution) {
+FrameMeasurement frameWithPixels(const FrameBudget& budget, double fixedAtFullResolution,
+                                 bool moved = false) {
     FrameMeasurement frame;
+    frame.cameraMoved = moved;
     frame.primitives = 100000;
     frame.vegetationMilliseconds = 50.0;
     const double scale = budget.renderScale();
@@ -72,9 +74,14 @@ TEST(FrameBudget, LowersTheResolutionWhenTheVegetationCannotMeetTheBudget) {
         EXPECT_EQ(budget.level(), FrameBudget::kLevels - 1);
     }
     EXPECT_EQ(budget.reversals(), reversals);
-    // The view becomes light: back to the full resolution and detail, then stays.
-    for (int frame = 0; frame < 80; ++frame) {
+    // Still, a lighter view does not make the level finer (the viewer refines still
+    // views itself); moving, it goes back to the full resolution and detail, then stays.
+    for (int frame = 0; frame < 20; ++frame) {
         budget.record(frameWithPixels(budget, 20.0));
+    }
+    EXPECT_EQ(budget.level(), FrameBudget::kLevels - 1);
+    for (int frame = 0; frame < 80; ++frame) {
+        budget.record(frameWithPixels(budget, 20.0, true));
     }
     EXPECT_EQ(budget.level(), 0);
     EXPECT_EQ(budget.renderScale(), 1.0);
@@ -82,6 +89,27 @@ TEST(FrameBudget, LowersTheResolutionWhenTheVegetationCannotMeetTheBudget) {
     for (int level = 0; level < FrameBudget::kVegetationLevels; ++level) {
         EXPECT_EQ(FrameBudget::scaleOf(level), 1.0) << level;
     }
+}
+
+// The viewer's start-up frame is drawn at the coarsest level and is the model's first
+// measurement: still frames keep that level, moving ones that predict room climb back.
+TEST(FrameBudget, StartsAtTheLevelOfTheStartUpFrameAndClimbsOnlyWhileMoving) {
+    FrameBudget budget(150.0);
+    budget.startAt(FrameBudget::kLevels - 1);
+    EXPECT_EQ(budget.level(), FrameBudget::kLevels - 1);
+    for (int frame = 0; frame < 20; ++frame) {
+        budget.record(frameWithPixels(budget, 20.0));  // 70 ms at full detail: room
+    }
+    EXPECT_EQ(budget.level(), FrameBudget::kLevels - 1);
+    EXPECT_EQ(budget.changes(), 0u);
+    for (int frame = 0; frame < 80; ++frame) {
+        budget.record(frameWithPixels(budget, 20.0, true));
+    }
+    EXPECT_EQ(budget.level(), 0);
+    EXPECT_EQ(budget.reversals(), 0u);
+    FrameBudget none(0.0);
+    none.startAt(FrameBudget::kLevels - 1);
+    EXPECT_EQ(none.level(), 0) << "without a budget: always full detail";
 }
 
 TEST(FrameBudget, CoarserLevelsLowerQualityAndDropTheSmallestPlants) {

@@ -138,6 +138,9 @@ public:
     // Waits for the plant assets being built in the background (interactive frames start
     // them); call before the source graphs they belong to are dropped.
     void finishAssetBuilds();
+    // Builds (on this thread) and uploads the plant species of `layers` that are not yet
+    // drawn, as a frame waiting for tiles would; fails with the first species' error.
+    Status prepareSpecies(const TerrainLayers& layers);
     // Reversed-Z depth of the last render (0 = nothing drawn), rows top to bottom; and
     // the near plane distance (metres) it was rendered with: distance = near / depth.
     std::vector<float> depth() const { return gbuffer_.readDepth(); }

@@ -29,8 +29,10 @@
 // fragments on llvmpipe); where it is not, the next measurements correct it.
 //
 // Hysteresis: a coarser level is taken at once when the prediction for the current one
-// exceeds the budget; a finer one only after 4 consecutive frames predicting it below
-// 75 % of the budget. Reversals (a change against the previous one) are counted.
+// exceeds the budget; a finer one only after 4 consecutive moving frames predicting it
+// below 75 % of the budget (a still view only ever gets coarser: the viewer refines it
+// at full detail once its tiles are in, so it cannot oscillate while still). Reversals
+// (a change against the previous one) are counted.
 #pragma once
 
 #include <cstddef>
@@ -58,10 +60,17 @@ public:
     double budgetMilliseconds() const { return budget_; }
     int level() const { return level_; }
     // `settings` with the level's quality and minimum pixel size (relative to its values).
-    VegetationSettings settingsFor(const VegetationSettings& settings) const;
+    VegetationSettings settingsFor(const VegetationSettings& settings) const {
+        return settingsAt(settings, level_);
+    }
+    // The same at any `level` (0..kLevels-1).
+    static VegetationSettings settingsAt(const VegetationSettings& settings, int level);
     // Fraction (0, 1] of the window's width and height to draw at the current level.
     double renderScale() const { return scaleOf(level_); }
     static double scaleOf(int level);
+    // Before the first record(): the level the first frame is drawn at (the viewer's
+    // start-up frame, at the coarsest level: nothing is known of the scene's cost yet).
+    void startAt(int level);
     // Updates the model with a frame rendered at level(), then chooses the next level.
     void record(const FrameMeasurement& frame);
     // Predicted milliseconds of a frame at `level` like the last one.

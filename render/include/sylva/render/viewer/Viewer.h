@@ -54,10 +54,11 @@ enum class NavigationMode { Orbit, Fly, Walk };
 // One interactive frame as the viewer saw it (for benchmarks and tests); pointers valid
 // only during the callback.
 struct ViewerFrame {
-    double milliseconds = 0;  // render call: update, draw, read-back
-    bool pending = false;     // wanted tiles were still being produced
-    bool moved = false;       // the view changed since the previous frame
-    int budgetLevel = 0;      // FrameBudget level used (0 = full detail)
+    double milliseconds = 0;    // render call: update, draw, read-back
+    bool pending = false;       // wanted tiles were still being produced
+    bool moved = false;         // the view changed since the previous frame
+    int budgetLevel = 0;        // FrameBudget level used (0 = full detail)
+    double startupSeconds = 0;  // the session's preparation before its first frame
     // A still view's refinement at full detail and resolution: not chosen by the budget
     // (docs/viewer.md, "Frame budget"), drawn while the view stays still.
     bool refined = false;
