@@ -15,10 +15,10 @@
 
 #include "sylva/core/geo/Ellipsoid.h"
 #include "sylva/core/scene/CameraNavigation.h"
-#include "sylva/core/scene/WalkerCollision.h"
 #include "sylva/core/scheduler/Scheduler.h"
 #include "sylva/core/sources/objects/BuildingsSource.h"
 #include "sylva/core/sources/objects/ObjectsSource.h"
+#include "sylva/core/sources/objects/WalkerCollision.h"
 #include "sylva/core/sources/raster/HypsometricSource.h"
 #include "sylva/core/sources/raster/NoiseSource.h"
 #include "sylva/core/sources/raster/NormalMapSource.h"
@@ -209,7 +209,7 @@ Result<std::vector<std::vector<FrameSample>>> fly(SceneRenderer& renderer,
     return samples;
 }
 
-// The viewer's walker in the city (issue 20; core/scene/WalkerCollision): MeshCollision
+// The viewer's walker in the city (issue 20; core/sources/objects/WalkerCollision): MeshCollision
 // over every city tile, each tile's grid built by a first vertical probe through its
 // origin (timed per tile), then walker moves — a 1.5 m step (three wall probes, a slide
 // when blocked) and the standing height after it — from random points of random tiles,

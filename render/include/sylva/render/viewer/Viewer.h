@@ -28,7 +28,7 @@
 #include "sylva/core/model/ProjectModel.h"
 #include "sylva/core/scene/Camera.h"
 #include "sylva/core/scene/ViewerScript.h"
-#include "sylva/core/scene/WalkerCollision.h"
+#include "sylva/core/sources/objects/WalkerCollision.h"
 #include "sylva/render/batch/BatchRenderer.h"
 
 namespace sylva::render {
@@ -84,7 +84,7 @@ struct ViewerOptions {
     std::vector<ScriptCommand> script;  // run first; the window stays open afterwards
     bool closeAfterScript = false;      // also without `quit` (headless runs)
     // Walk mode: eye height over the ground or the mesh surface stood on, the step climbed
-    // and the distance kept from walls (core/scene/WalkerCollision).
+    // and the distance kept from walls (core/sources/objects/WalkerCollision).
     WalkerBody walker;
     double tileTimeoutSeconds = 600;  // wait-tiles and screenshots give up after this
     FILE* log = stdout;               // reloads, saves, screenshots, script progress

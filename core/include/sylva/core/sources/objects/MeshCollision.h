@@ -1,6 +1,6 @@
 // MeshCollision: segments against the proposal's meshes on the CPU — the buildings' static
 // triangles and every placed model part of a set of MeshTiles — for the viewer's walker
-// (core/scene/WalkerCollision: the surface under the feet, the wall ahead), so the walk
+// (core/sources/objects/WalkerCollision: the surface under the feet, the wall ahead), so the walk
 // meets exactly the geometry that is drawn.
 //
 // Faces. A triangle is hit only from its front (MeshGeometry: counter-clockwise seen from

@@ -1,4 +1,4 @@
-#include "sylva/core/scene/WalkerCollision.h"
+#include "sylva/core/sources/objects/WalkerCollision.h"
 
 #include <algorithm>
 #include <array>

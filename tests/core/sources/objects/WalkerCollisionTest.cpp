@@ -4,7 +4,7 @@
 // the analytic ones); a plinth below the step height is stepped onto, a wall above it is
 // not climbed; a walker falls onto a roof below the feet; a camera inside a building
 // walks out; without meshes nothing changes.
-#include "sylva/core/scene/WalkerCollision.h"
+#include "sylva/core/sources/objects/WalkerCollision.h"
 
 #include <gtest/gtest.h>
 
